@@ -1,0 +1,116 @@
+// sheetgen command line: batch runs without Blender (DESIGN.md "Interfaces").
+#include <CLI/CLI.hpp>
+
+#include <chrono>
+#include <cstdio>
+#include <iostream>
+
+#include "sheetgen/core/input_error.hpp"
+#include "sheetgen/core/problem.hpp"
+#include "sheetgen/env/environment.hpp"
+
+namespace {
+
+using sheetgen::Vec3;
+
+std::string fmt_vec(const Vec3& v) {
+  char buf[96];
+  std::snprintf(buf, sizeof buf, "[%.4g, %.4g, %.4g]", v.x(), v.y(), v.z());
+  return buf;
+}
+
+void print_summary(const sheetgen::Problem& p) {
+  std::printf("problem %s\n", p.source.c_str());
+  std::printf("meshes: %zu (%d triangles)\n", p.meshes.size(), p.triangle_count());
+  for (const auto& m : p.meshes)
+    std::printf("  %-20s %8zu triangles %8zu vertices  %s%s\n", m.name.c_str(), m.mesh.triangles.size(), m.mesh.vertices.size(),
+                m.source.c_str(), m.mesh.is_closed() ? "  (closed)" : "  (open)");
+  std::printf("rivet areas: %zu\n", p.rivet_areas.size());
+  for (const auto& r : p.rivet_areas)
+    std::printf("  %-20s on %-16s %5zu faces  %.6f m^2\n", r.name.c_str(), p.meshes[r.mesh].name.c_str(), r.faces.size(), r.area_m2);
+  std::printf("loads: %zu\n", p.loads.size());
+  for (const auto& l : p.loads)
+    std::printf("  %-20s centre %s m  size %s m  force %s N  moment %s N*m\n", l.name.c_str(), fmt_vec(l.center).c_str(),
+                fmt_vec(l.size).c_str(), fmt_vec(l.force).c_str(), fmt_vec(l.moment).c_str());
+  const auto b = p.bounds();
+  std::printf("bounding box: min %s m  max %s m  (diagonal %.4g m)\n", fmt_vec(b.min).c_str(), fmt_vec(b.max).c_str(), b.diagonal());
+  std::printf("sheet: t = %.4g mm, E = %.4g GPa, Fty = %.4g MPa; bend radius %.4g mm, K %.3g, min flange %.4g mm\n",
+              p.material.thickness * 1e3, p.material.youngs_modulus * 1e-9, p.material.yield_strength * 1e-6,
+              p.manufacturing.bend_radius * 1e3, p.manufacturing.k_factor, p.manufacturing.min_flange * 1e3);
+}
+
+// The environment queries a search will ask, on every load: how far its base is
+// from each rivet area and from obstacles, and what a ray from it meets.
+void print_queries(const sheetgen::Problem& p, const sheetgen::EnvironmentOptions& options) {
+  const auto start = std::chrono::steady_clock::now();
+  sheetgen::Environment env(p, options);
+  const double build = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  std::printf("environment: voxel %.4g mm, built in %.3f s\n", env.voxel_size() * 1e3, build);
+  const double t = p.material.thickness;
+  for (size_t li = 0; li < p.loads.size(); ++li) {
+    const auto& l = p.loads[li];
+    const auto face = l.bottom_face();
+    const Vec3 base = 0.25 * (face[0] + face[1] + face[2] + face[3]);
+    const Vec3 down = l.rotation * Vec3(0, 0, -1);
+    const Vec3 mid = base + 0.5 * t * down;  // mid-surface of a base tab under the box
+    std::printf("load %s: base-tab centre %s m, clearance to other obstacles %.4g mm\n", l.name.c_str(), fmt_vec(mid).c_str(),
+                env.clearance(mid, sheetgen::AllowedContacts{{}, {static_cast<int>(li)}}) * 1e3);
+    for (int r = 0; r < env.rivet_area_count(); ++r)
+      std::printf("  distance to rivet area %-16s %.4g m\n", p.rivet_areas[r].name.c_str(), env.rivet_area_distance(r, mid));
+    const Vec3 dirs[6] = {Vec3::UnitX(), -Vec3::UnitX(), Vec3::UnitY(), -Vec3::UnitY(), Vec3::UnitZ(), -Vec3::UnitZ()};
+    const char* names[6] = {"+x", "-x", "+y", "-y", "+z", "-z"};
+    for (int k = 0; k < 6; ++k) {
+      // Start just outside the box so the ray does not report the box itself.
+      const Vec3 o = l.center + (0.5 * l.size.cwiseAbs().maxCoeff() * 1.75 + t) * dirs[k];
+      auto hit = env.cast_ray(o, dirs[k], 100.0);
+      if (!hit) {
+        std::printf("  ray %s: no hit\n", names[k]);
+        continue;
+      }
+      std::string what = hit->load >= 0 ? "load " + p.loads[hit->load].name : "mesh " + p.meshes[hit->mesh].name;
+      if (hit->rivet_area >= 0) what += " (rivet area " + p.rivet_areas[hit->rivet_area].name + ")";
+      std::printf("  ray %s: hits %s face %d at %.4g m\n", names[k], what.c_str(), hit->face, hit->distance);
+    }
+  }
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  CLI::App app{"sheetgen: generative design of sheet-metal brackets"};
+  app.require_subcommand(1);
+
+  std::string check_path;
+  bool check_env = false;
+  double voxel_mm = 0;
+  auto* check = app.add_subcommand("check", "validate a problem file and print a summary");
+  check->add_option("problem", check_path, "problem JSON (sheetgen-problem/1)")->required();
+  check->add_flag("--env", check_env, "also build the environment (clearance field, rays) and print queries");
+  check->add_option("--voxel-mm", voxel_mm, "clearance field voxel size in mm (default: automatic)");
+
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    return app.exit(e) == 0 ? 0 : 1;
+  }
+
+  try {
+    if (*check) {
+      const sheetgen::Problem p = sheetgen::load_problem(check_path);
+      print_summary(p);
+      if (check_env) {
+        sheetgen::EnvironmentOptions options;
+        options.voxel_size = voxel_mm * 1e-3;
+        print_queries(p, options);
+      }
+      std::printf("ok\n");
+    }
+  } catch (const sheetgen::InputError& e) {
+    std::fprintf(stderr, "sheetgen: %s\n", e.what());
+    return 1;
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "sheetgen: internal error: %s\n", e.what());
+    return 3;
+  }
+  return 0;
+}

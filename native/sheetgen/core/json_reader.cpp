@@ -1,0 +1,114 @@
+#include "sheetgen/core/json_reader.hpp"
+
+#include <cmath>
+
+#include "sheetgen/core/input_error.hpp"
+
+namespace sheetgen {
+
+namespace {
+std::string join(const std::string& path, const std::string& key) { return path.empty() ? key : path + "." + key; }
+}  // namespace
+
+void JsonNode::fail(const std::string& problem) const { throw InputError(file_, path_.empty() ? "(top level)" : path_, problem); }
+
+std::string JsonNode::type_name() const {
+  const auto& v = *value_;
+  if (v.is_null()) return "null";
+  if (v.is_boolean()) return "a boolean";
+  if (v.is_number()) return "a number";
+  if (v.is_string()) return "a string";
+  if (v.is_array()) return "an array";
+  return "an object";
+}
+
+void JsonNode::expect_object() const {
+  if (!value_->is_object()) fail("expected an object, got " + type_name());
+}
+void JsonNode::expect_array() const {
+  if (!value_->is_array()) fail("expected an array, got " + type_name());
+}
+
+bool JsonNode::has(const std::string& key) const { return value_->is_object() && value_->contains(key); }
+
+JsonNode JsonNode::at(const std::string& key) const {
+  expect_object();
+  auto it = value_->find(key);
+  if (it == value_->end()) throw InputError(file_, join(path_, key), "required field is missing");
+  return JsonNode(*it, file_, join(path_, key));
+}
+
+std::optional<JsonNode> JsonNode::find(const std::string& key) const {
+  expect_object();
+  auto it = value_->find(key);
+  if (it == value_->end() || it->is_null()) return std::nullopt;
+  return JsonNode(*it, file_, join(path_, key));
+}
+
+JsonNode JsonNode::at(size_t index) const {
+  expect_array();
+  if (index >= value_->size()) fail("index " + std::to_string(index) + " is out of range");
+  return JsonNode((*value_)[index], file_, path_ + "[" + std::to_string(index) + "]");
+}
+
+size_t JsonNode::size() const {
+  expect_array();
+  return value_->size();
+}
+
+std::string JsonNode::as_string() const {
+  if (!value_->is_string()) fail("expected a string, got " + type_name());
+  return value_->get<std::string>();
+}
+
+double JsonNode::as_number() const {
+  // nlohmann parses the non-standard tokens NaN/Infinity as errors, but a huge
+  // literal such as 1e999 becomes inf: both end here as "not a finite number".
+  if (!value_->is_number()) fail("expected a number, got " + type_name());
+  double v = value_->get<double>();
+  if (!std::isfinite(v)) fail("expected a finite number, got " + std::to_string(v));
+  return v;
+}
+
+double JsonNode::as_positive() const {
+  double v = as_number();
+  if (!(v > 0)) fail("must be greater than zero, got " + value_->dump());
+  return v;
+}
+
+double JsonNode::as_non_negative() const {
+  double v = as_number();
+  if (v < 0) fail("must not be negative, got " + value_->dump());
+  return v;
+}
+
+long long JsonNode::as_integer() const {
+  if (!value_->is_number_integer()) fail("expected an integer, got " + (value_->is_number() ? value_->dump() : type_name()));
+  return value_->get<long long>();
+}
+
+Vec3 JsonNode::as_vec3() const {
+  if (!value_->is_array() || value_->size() != 3) fail("expected an array of 3 numbers, got " + (value_->is_array() ? "an array of " + std::to_string(value_->size()) : type_name()));
+  Vec3 v;
+  for (int k = 0; k < 3; ++k) v[k] = at(k).as_number();
+  return v;
+}
+
+double JsonNode::number_or(const std::string& key, double fallback) const {
+  auto n = find(key);
+  return n ? n->as_number() : fallback;
+}
+double JsonNode::positive_or(const std::string& key, double fallback) const {
+  auto n = find(key);
+  return n ? n->as_positive() : fallback;
+}
+double JsonNode::non_negative_or(const std::string& key, double fallback) const {
+  auto n = find(key);
+  return n ? n->as_non_negative() : fallback;
+}
+long long JsonNode::integer_or(const std::string& key, long long fallback) const {
+  auto n = find(key);
+  return n ? n->as_integer() : fallback;
+}
+
+}  // namespace sheetgen

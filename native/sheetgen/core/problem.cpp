@@ -1,0 +1,372 @@
+#include "sheetgen/core/problem.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <set>
+#include <sstream>
+
+#include "sheetgen/core/input_error.hpp"
+#include "sheetgen/core/json_reader.hpp"
+#include "sheetgen/core/mesh_io.hpp"
+
+namespace sheetgen {
+
+namespace fs = std::filesystem;
+
+// ---------------------------------------------------------------- Load geometry
+
+std::array<Vec3, 8> Load::corners() const {
+  std::array<Vec3, 8> c;
+  const Eigen::Matrix3d R = rotation.toRotationMatrix();
+  for (int i = 0; i < 8; ++i) {
+    Vec3 local((i & 1 ? 0.5 : -0.5) * size.x(), (i & 2 ? 0.5 : -0.5) * size.y(), (i & 4 ? 0.5 : -0.5) * size.z());
+    c[i] = center + R * local;
+  }
+  return c;
+}
+
+TriangleMesh Load::box_mesh() const {
+  TriangleMesh m;
+  const auto c = corners();
+  m.vertices.assign(c.begin(), c.end());
+  // Quads as corner-index quadruples, counter-clockwise seen from outside.
+  const int quads[6][4] = {{0, 2, 3, 1}, {4, 5, 7, 6}, {0, 1, 5, 4}, {2, 6, 7, 3}, {0, 4, 6, 2}, {1, 3, 7, 5}};
+  for (const auto& q : quads) {
+    m.triangles.push_back({q[0], q[1], q[2]});
+    m.triangles.push_back({q[0], q[2], q[3]});
+  }
+  return m;
+}
+
+double Load::signed_distance(const Vec3& p) const {
+  const Vec3 local = rotation.conjugate() * (p - center);
+  const Vec3 q = local.cwiseAbs() - 0.5 * size;
+  const double outside = q.cwiseMax(Vec3::Zero()).norm();
+  const double inside = std::min(q.maxCoeff(), 0.0);
+  return outside + inside;
+}
+
+std::array<Vec3, 4> Load::bottom_face() const {
+  const auto c = corners();
+  return {c[0], c[2], c[3], c[1]};  // local z = -size/2; outward normal -z
+}
+
+double Requirements::compliance_limit(double force_magnitude) const {
+  if (max_compliance) return *max_compliance;
+  const double deflection = max_deflection ? *max_deflection : 1.0e-3;
+  return force_magnitude * deflection;
+}
+
+BoundingBox Problem::bounds() const {
+  BoundingBox b;
+  for (const auto& m : meshes) b.extend(bounding_box(m.mesh));
+  for (const auto& l : loads)
+    for (const auto& c : l.corners()) b.extend(c);
+  return b;
+}
+
+int Problem::triangle_count() const {
+  int n = 0;
+  for (const auto& m : meshes) n += static_cast<int>(m.mesh.triangles.size());
+  return n;
+}
+
+// ---------------------------------------------------------------- parsing
+
+namespace {
+
+void reject_unknown(const JsonNode& node, std::initializer_list<const char*> allowed) {
+  for (auto it = node.raw().begin(); it != node.raw().end(); ++it) {
+    const std::string& key = it.key();
+    if (std::none_of(allowed.begin(), allowed.end(), [&](const char* a) { return key == a; })) {
+      std::string list;
+      for (const char* a : allowed) list += std::string(list.empty() ? "" : ", ") + a;
+      node.fail("unknown field '" + key + "' (expected one of: " + list + ")");
+    }
+  }
+}
+
+std::string checked_name(const JsonNode& parent, std::set<std::string>& seen, const char* what) {
+  const JsonNode n = parent.at("name");
+  std::string name = n.as_string();
+  if (name.empty()) n.fail("name must not be empty");
+  // Names become output folder names: keep them to one path component.
+  if (name.find('/') != std::string::npos || name.find('\\') != std::string::npos || name == "." || name == ".." ||
+      name.find('\0') != std::string::npos)
+    n.fail("name '" + name + "' must not contain '/' or '\\' or be '.' or '..'");
+  if (!seen.insert(name).second) n.fail(std::string("duplicate ") + what + " name '" + name + "'");
+  return name;
+}
+
+TriangleMesh inline_mesh(const JsonNode& node) {
+  TriangleMesh mesh;
+  const JsonNode verts = node.at("vertices");
+  const size_t nv = verts.size();
+  mesh.vertices.reserve(nv);
+  for (size_t i = 0; i < nv; ++i) mesh.vertices.push_back(verts.at(i).as_vec3());
+  const JsonNode tris = node.at("triangles");
+  const size_t nt = tris.size();
+  mesh.triangles.reserve(nt);
+  for (size_t f = 0; f < nt; ++f) {
+    const JsonNode t = tris.at(f);
+    if (!t.raw().is_array() || t.raw().size() != 3) t.fail("expected an array of 3 vertex indices");
+    std::array<int, 3> tri;
+    for (int k = 0; k < 3; ++k) {
+      const JsonNode idx = t.at(k);
+      long long v = idx.as_integer();
+      if (v < 0 || v >= static_cast<long long>(nv))
+        idx.fail("vertex index " + std::to_string(v) + " is out of range (" + std::to_string(nv) + " vertices)");
+      tri[k] = static_cast<int>(v);
+    }
+    mesh.triangles.push_back(tri);
+  }
+  return mesh;
+}
+
+void parse_meshes(const JsonNode& root, const std::string& base_dir, Problem& p) {
+  const JsonNode env = root.at("environment");
+  env.expect_object();
+  reject_unknown(env, {"meshes"});
+  const JsonNode meshes = env.at("meshes");
+  if (meshes.size() == 0) meshes.fail("the environment has no meshes");
+  std::set<std::string> names;
+  for (size_t i = 0; i < meshes.size(); ++i) {
+    const JsonNode m = meshes.at(i);
+    m.expect_object();
+    reject_unknown(m, {"name", "file", "vertices", "triangles"});
+    EnvironmentMesh em;
+    em.name = checked_name(m, names, "mesh");
+    if (m.has("file")) {
+      if (m.has("vertices") || m.has("triangles")) m.fail("give either 'file' or 'vertices' + 'triangles', not both");
+      const JsonNode f = m.at("file");
+      const std::string rel = f.as_string();
+      if (rel.empty()) f.fail("file name is empty");
+      fs::path path = fs::u8path(rel);
+      if (path.is_relative()) path = fs::u8path(base_dir) / path;
+      em.source = path.u8string();
+      std::error_code ec;
+      if (!fs::is_regular_file(path, ec))
+        f.fail("mesh file '" + em.source + "' does not exist or is not a regular file");
+      try {
+        em.mesh = read_mesh(em.source);
+      } catch (const InputError& e) {
+        // Report the mesh file's own error under the JSON field that named it.
+        f.fail("cannot read mesh file '" + em.source + "': " + (e.field().empty() ? "" : e.field() + ": ") + e.problem());
+      }
+      validate_mesh(em.mesh, p.source, m.path() + " (" + em.source + ")");
+    } else if (m.has("vertices") || m.has("triangles")) {
+      em.source = "<inline>";
+      em.mesh = inline_mesh(m);
+      validate_mesh(em.mesh, p.source, m.path());
+    } else {
+      m.fail("needs 'file' or inline 'vertices' and 'triangles'");
+    }
+    p.meshes.push_back(std::move(em));
+  }
+}
+
+void parse_rivet_areas(const JsonNode& root, Problem& p) {
+  const JsonNode ras = root.at("rivet_areas");
+  if (ras.size() == 0) ras.fail("there are no rivet areas: a bracket needs somewhere to be riveted");
+  std::set<std::string> names;
+  for (size_t i = 0; i < ras.size(); ++i) {
+    const JsonNode r = ras.at(i);
+    r.expect_object();
+    reject_unknown(r, {"name", "mesh", "faces"});
+    RivetAreaSpec ra;
+    ra.name = checked_name(r, names, "rivet area");
+    const JsonNode mesh = r.at("mesh");
+    if (mesh.raw().is_string()) {
+      const std::string mname = mesh.as_string();
+      auto it = std::find_if(p.meshes.begin(), p.meshes.end(), [&](const EnvironmentMesh& m) { return m.name == mname; });
+      if (it == p.meshes.end()) mesh.fail("no environment mesh is named '" + mname + "'");
+      ra.mesh = static_cast<int>(it - p.meshes.begin());
+    } else {
+      long long idx = mesh.as_integer();
+      if (idx < 0 || idx >= static_cast<long long>(p.meshes.size()))
+        mesh.fail("mesh index " + std::to_string(idx) + " is out of range (" + std::to_string(p.meshes.size()) + " meshes)");
+      ra.mesh = static_cast<int>(idx);
+    }
+    const TriangleMesh& target = p.meshes[ra.mesh].mesh;
+    const JsonNode faces = r.at("faces");
+    if (faces.size() == 0) faces.fail("rivet area '" + ra.name + "' has no faces");
+    for (size_t k = 0; k < faces.size(); ++k) {
+      const JsonNode fnode = faces.at(k);
+      long long f = fnode.as_integer();
+      if (f < 0 || f >= static_cast<long long>(target.triangles.size()))
+        fnode.fail("face index " + std::to_string(f) + " is out of range (mesh '" + p.meshes[ra.mesh].name + "' has " +
+                   std::to_string(target.triangles.size()) + " faces)");
+      ra.faces.push_back(static_cast<int>(f));
+    }
+    std::sort(ra.faces.begin(), ra.faces.end());
+    ra.faces.erase(std::unique(ra.faces.begin(), ra.faces.end()), ra.faces.end());
+    for (int f : ra.faces) ra.area_m2 += target.face_area(f);
+    if (!(ra.area_m2 > 0)) faces.fail("rivet area '" + ra.name + "' has zero area (degenerate faces)");
+    p.rivet_areas.push_back(std::move(ra));
+  }
+}
+
+void parse_loads(const JsonNode& root, Problem& p) {
+  const JsonNode loads = root.at("loads");
+  if (loads.size() == 0) loads.fail("there are no loads: nothing to hold");
+  std::set<std::string> names;
+  for (size_t i = 0; i < loads.size(); ++i) {
+    const JsonNode l = loads.at(i);
+    l.expect_object();
+    reject_unknown(l, {"name", "center", "size", "rotation", "force", "moment"});
+    Load load;
+    load.name = checked_name(l, names, "load");
+    load.center = l.at("center").as_vec3();
+    const JsonNode size = l.at("size");
+    load.size = size.as_vec3();
+    if (!(load.size.array() > 0).all())
+      size.fail("load box size must be positive in x, y and z, got [" + std::to_string(load.size.x()) + ", " +
+                std::to_string(load.size.y()) + ", " + std::to_string(load.size.z()) + "] m");
+    if (auto rot = l.find("rotation")) {
+      if (!rot->raw().is_array() || rot->raw().size() != 4) rot->fail("expected a quaternion [w, x, y, z]");
+      double q[4];
+      for (int k = 0; k < 4; ++k) q[k] = rot->at(k).as_number();
+      Eigen::Quaterniond quat(q[0], q[1], q[2], q[3]);
+      if (!(quat.norm() > 1e-12)) rot->fail("quaternion has zero length");
+      load.rotation = quat.normalized();
+    }
+    const JsonNode force = l.at("force");
+    load.force = force.as_vec3();
+    if (auto m = l.find("moment")) load.moment = m->as_vec3();
+    if (load.force.norm() == 0 && load.moment.norm() == 0) force.fail("load '" + load.name + "' has zero force and zero moment");
+    p.loads.push_back(load);
+  }
+}
+
+void parse_settings(const JsonNode& root, Problem& p) {
+  if (auto m = root.find("material")) {
+    m->expect_object();
+    reject_unknown(*m, {"name", "youngs_modulus", "poisson_ratio", "density", "yield_strength", "ultimate_strength", "thickness"});
+    Material& mat = p.material;
+    mat.youngs_modulus = m->positive_or("youngs_modulus", mat.youngs_modulus);
+    mat.poisson_ratio = m->number_or("poisson_ratio", mat.poisson_ratio);
+    if (!(mat.poisson_ratio > -1 && mat.poisson_ratio < 0.5)) m->at("poisson_ratio").fail("must lie in (-1, 0.5)");
+    mat.density = m->positive_or("density", mat.density);
+    mat.yield_strength = m->positive_or("yield_strength", mat.yield_strength);
+    mat.ultimate_strength = m->positive_or("ultimate_strength", mat.ultimate_strength);
+    mat.thickness = m->positive_or("thickness", mat.thickness);
+  }
+  const double t = p.material.thickness;
+  if (auto r = root.find("requirements")) {
+    r->expect_object();
+    reject_unknown(*r, {"max_compliance", "max_deflection", "min_margin_of_safety", "safety_factor", "clearance"});
+    Requirements& req = p.requirements;
+    if (auto c = r->find("max_compliance")) req.max_compliance = c->as_positive();
+    if (auto d = r->find("max_deflection")) req.max_deflection = d->as_positive();
+    if (req.max_compliance && req.max_deflection) r->fail("give max_compliance or max_deflection, not both");
+    req.min_margin_of_safety = r->number_or("min_margin_of_safety", req.min_margin_of_safety);
+    req.safety_factor = r->positive_or("safety_factor", req.safety_factor);
+    req.clearance = r->non_negative_or("clearance", req.clearance);
+  }
+  Manufacturing& mf = p.manufacturing;
+  std::optional<JsonNode> m = root.find("manufacturing");
+  if (m) {
+    m->expect_object();
+    reject_unknown(*m, {"bend_radius", "k_factor", "kerf", "min_flange", "min_tab_width", "min_tab_length", "max_tab_length",
+                        "min_bend_angle", "max_bend_angle", "max_skew", "rivet_diameter", "rivet_edge_distance", "rivet_pitch"});
+  }
+  auto pos = [&](const char* key, double fallback) { return m ? m->positive_or(key, fallback) : fallback; };
+  auto nonneg = [&](const char* key, double fallback) { return m ? m->non_negative_or(key, fallback) : fallback; };
+  mf.bend_radius = nonneg("bend_radius", 4.0 * t);
+  mf.k_factor = nonneg("k_factor", mf.k_factor);
+  if (mf.k_factor > 1.0) m->at("k_factor").fail("must lie in [0, 1]");
+  mf.kerf = nonneg("kerf", mf.kerf);
+  mf.min_flange = pos("min_flange", 4.0 * t + mf.bend_radius);
+  mf.min_tab_width = pos("min_tab_width", 10.0 * t);
+  mf.min_tab_length = pos("min_tab_length", 2.0 * mf.bend_radius + 2.0 * t);
+  mf.max_tab_length = pos("max_tab_length", mf.max_tab_length);
+  if (mf.max_tab_length < mf.min_tab_length) (m ? m->at("max_tab_length") : root).fail("max_tab_length is below min_tab_length");
+  mf.min_bend_angle = pos("min_bend_angle", mf.min_bend_angle);
+  mf.max_bend_angle = pos("max_bend_angle", mf.max_bend_angle);
+  if (mf.max_bend_angle > M_PI || mf.max_bend_angle < mf.min_bend_angle)
+    (m ? m->at("max_bend_angle") : root).fail("must lie between min_bend_angle and pi (radians)");
+  mf.max_skew = nonneg("max_skew", mf.max_skew);
+  // 1/8 in (3.175 mm) rivets are the smallest structural size; thicker sheet takes D >= 2 t.
+  const double default_rivet = std::max(3.175e-3, std::ceil(2.0 * t / 0.79375e-3) * 0.79375e-3);
+  mf.rivet_diameter = pos("rivet_diameter", default_rivet);
+  mf.rivet_edge_distance = pos("rivet_edge_distance", 2.0 * mf.rivet_diameter);
+  mf.rivet_pitch = pos("rivet_pitch", 6.0 * mf.rivet_diameter);
+
+  if (auto s = root.find("search")) {
+    s->expect_object();
+    reject_unknown(*s, {"chains", "iterations", "beam_width", "seed", "alpha", "beta", "scene_unit", "threads"});
+    SearchSettings& ss = p.search;
+    auto count = [&](const char* key, int fallback, long long lo, long long hi) {
+      auto n = s->find(key);
+      if (!n) return fallback;
+      long long v = n->as_integer();
+      if (v < lo || v > hi) n->fail("must lie in [" + std::to_string(lo) + ", " + std::to_string(hi) + "], got " + std::to_string(v));
+      return static_cast<int>(v);
+    };
+    ss.chains = count("chains", ss.chains, 1, 1024);
+    ss.iterations = count("iterations", ss.iterations, 0, 10000000);
+    ss.beam_width = count("beam_width", ss.beam_width, 1, 4096);
+    ss.threads = count("threads", ss.threads, 0, 1024);
+    if (auto seed = s->find("seed")) {
+      long long v = seed->as_integer();
+      if (v < 0) seed->fail("must not be negative");
+      ss.seed = static_cast<std::uint64_t>(v);
+    }
+    ss.alpha = s->non_negative_or("alpha", ss.alpha);
+    ss.beta = s->non_negative_or("beta", ss.beta);
+    ss.scene_unit = s->positive_or("scene_unit", ss.scene_unit);
+  }
+}
+
+}  // namespace
+
+Problem parse_problem(const std::string& json_text, const std::string& source, const std::string& base_dir) {
+  nlohmann::json doc;
+  try {
+    doc = nlohmann::json::parse(json_text);
+  } catch (const nlohmann::json::parse_error& e) {
+    // e.what() carries byte position and reason; keep the part after the id.
+    std::string what = e.what();
+    auto pos = what.find("] ");
+    throw InputError(source, "", "is not valid JSON (" + (pos == std::string::npos ? what : what.substr(pos + 2)) + ")");
+  }
+  Problem p;
+  p.source = source;
+  const JsonNode root(doc, source, "");
+  root.expect_object();
+  reject_unknown(root, {"format", "name", "description", "units", "environment", "rivet_areas", "loads", "material",
+                        "requirements", "manufacturing", "search"});
+  const JsonNode format = root.at("format");
+  if (format.as_string() != "sheetgen-problem/1")
+    format.fail("unsupported format '" + format.as_string() + "' (expected 'sheetgen-problem/1')");
+  if (auto units = root.find("units"))
+    if (units->as_string() != "m") units->fail("only 'm' (metres) is supported; scale the scene to metres");
+  parse_settings(root, p);  // first: defaults of manufacturing depend on thickness
+  parse_meshes(root, base_dir, p);
+  parse_rivet_areas(root, p);
+  parse_loads(root, p);
+  return p;
+}
+
+Problem load_problem(const std::string& path) {
+  std::error_code ec;
+  const fs::path fpath = fs::u8path(path);
+  if (!fs::exists(fpath, ec)) throw InputError(path, "", "file does not exist");
+  if (!fs::is_regular_file(fpath, ec)) throw InputError(path, "", "is not a regular file");
+  // A problem file is small: the meshes live in their own files. Refuse
+  // anything huge before reading it into memory.
+  const auto size = fs::file_size(fpath, ec);
+  constexpr std::uintmax_t kMaxProblemBytes = 256ull << 20;
+  if (!ec && size > kMaxProblemBytes)
+    throw InputError(path, "", "is " + std::to_string(size >> 20) + " MiB; problem files are limited to 256 MiB (put large meshes in OBJ/PLY files)");
+  std::ifstream in(fpath, std::ios::binary);
+  if (!in) throw InputError(path, "", "cannot be opened");
+  std::ostringstream ss;
+  ss << in.rdbuf();
+  const std::string base = fpath.has_parent_path() ? fpath.parent_path().u8string() : std::string(".");
+  return parse_problem(ss.str(), path, base);
+}
+
+}  // namespace sheetgen

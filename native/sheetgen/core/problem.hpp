@@ -1,0 +1,115 @@
+#pragma once
+// The problem a user poses ("sheetgen-problem/1", see docs/problem-format.md):
+// environment meshes, rivet areas, loads, and settings with documented defaults.
+#include <Eigen/Geometry>
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "sheetgen/core/triangle_mesh.hpp"
+
+namespace sheetgen {
+
+struct EnvironmentMesh {
+  std::string name;
+  TriangleMesh mesh;   // m
+  std::string source;  // file it was read from, or "<inline>"
+};
+
+struct RivetAreaSpec {
+  std::string name;
+  int mesh = -1;           // index into Problem::meshes
+  std::vector<int> faces;  // face indices of that mesh, unique, sorted
+  double area_m2 = 0;      // computed on load
+};
+
+struct Load {
+  std::string name;
+  Vec3 center = Vec3::Zero();                              // m, box centroid (world)
+  Vec3 size = Vec3::Zero();                                // m, box extents along its local x, y, z
+  Eigen::Quaterniond rotation = Eigen::Quaterniond::Identity();  // local -> world
+  Vec3 force = Vec3::Zero();                               // N, world frame, acts at the centroid
+  Vec3 moment = Vec3::Zero();                              // N*m, world frame, about the centroid
+
+  // The 8 world corners; index bit 0 = +x, bit 1 = +y, bit 2 = +z in the local frame.
+  std::array<Vec3, 8> corners() const;
+  // The 12 triangles of the box, outward facing.
+  TriangleMesh box_mesh() const;
+  // Signed distance from p to the box (negative inside), m.
+  double signed_distance(const Vec3& p) const;
+  // The bottom face (local -z) as 4 world points, counter-clockwise seen from below
+  // (outward normal = local -z). The base tab lies under this face.
+  std::array<Vec3, 4> bottom_face() const;
+};
+
+struct Material {  // Al 2024-T3 sheet by default (DESIGN.md "Units and defaults")
+  double youngs_modulus = 73.1e9;  // Pa
+  double poisson_ratio = 0.33;     // -
+  double density = 2780.0;         // kg/m^3
+  double yield_strength = 345e6;   // Pa, Fty
+  double ultimate_strength = 483e6;// Pa, Ftu
+  double thickness = 1.6e-3;       // m (0.063 in)
+};
+
+struct Requirements {
+  // Stiffness: C <= max_compliance (J). If the file gives max_deflection instead,
+  // max_compliance = |F| * max_deflection per load. Default: max_deflection 1 mm.
+  std::optional<double> max_compliance;  // J
+  std::optional<double> max_deflection;  // m
+  double min_margin_of_safety = 0.0;     // -, MS = Fty / (SF * sigma_vm_max) - 1
+  double safety_factor = 1.5;            // -
+  double clearance = 1.0e-3;             // m, gap kept beyond t/2 between mid-surface and obstacles
+
+  // Compliance limit for a load with force magnitude |F| (N), J.
+  double compliance_limit(double force_magnitude) const;
+};
+
+struct Manufacturing {  // lengths m, angles rad; defaults depend on thickness t (filled on load)
+  double bend_radius = 0;        // inside bend radius R; default 4 t
+  double k_factor = 0.45;        // neutral-axis position as a fraction of t
+  double kerf = 0.2e-3;          // gap kept between flat-pattern pieces, m
+  double min_flange = 0;         // minimum rivet flange length; default 4 t + R
+  double min_tab_width = 0;      // w_min, feeler width; default 10 t
+  double min_tab_length = 0;     // l_min; default 2 R + 2 t (room for the bend)
+  double max_tab_length = 0.5;   // l_max, m
+  double min_bend_angle = 5.0 * M_PI / 180.0;    // |theta3| lower limit
+  double max_bend_angle = 135.0 * M_PI / 180.0;  // |theta3| upper limit (press brake tooling)
+  double max_skew = 60.0 * M_PI / 180.0;         // |theta1|, |theta2| limit
+  double rivet_diameter = 0;     // default: 2 t rounded up to 1/32 in, at least 3.2 mm (1/8 in)
+  double rivet_edge_distance = 0;// default 2 * rivet_diameter (MIL-HDBK practice)
+  double rivet_pitch = 0;        // default 6 * rivet_diameter
+};
+
+struct SearchSettings {
+  int chains = 10;          // M
+  int iterations = 1000;    // N per chain
+  int beam_width = 8;       // B
+  std::uint64_t seed = 1;
+  double alpha = 1.0;       // Eq. 1
+  double beta = 3.0;        // Eq. 1
+  double scene_unit = 0.1;  // m; distances in Eq. 1-2 are measured in this unit (decimetres)
+  int threads = 0;          // 0 = all cores
+};
+
+struct Problem {
+  std::string source;  // the JSON file, or "<inline>"
+  std::vector<EnvironmentMesh> meshes;
+  std::vector<RivetAreaSpec> rivet_areas;
+  std::vector<Load> loads;
+  Material material;
+  Requirements requirements;
+  Manufacturing manufacturing;
+  SearchSettings search;
+
+  BoundingBox bounds() const;  // of meshes and load boxes
+  int triangle_count() const;
+};
+
+// Reads and validates a problem file. Mesh files are resolved relative to the
+// JSON's directory. Throws InputError (file, field, problem) on any bad input.
+Problem load_problem(const std::string& path);
+// Same from JSON text; `source` names it in errors, `base_dir` resolves mesh files.
+Problem parse_problem(const std::string& json_text, const std::string& source, const std::string& base_dir);
+
+}  // namespace sheetgen

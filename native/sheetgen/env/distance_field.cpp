@@ -1,0 +1,194 @@
+// The only translation unit that includes OpenVDB (its headers are heavy).
+#include "sheetgen/env/distance_field.hpp"
+
+#include <openvdb/openvdb.h>
+#include <openvdb/tools/MeshToVolume.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <limits>
+#include <mutex>
+
+#include "sheetgen/core/geometry.hpp"
+
+namespace sheetgen {
+
+namespace {
+
+// Feeds our double-precision world mesh to meshToVolume in index space.
+struct MeshAdapter {
+  const TriangleMesh* mesh;
+  double inv_voxel;
+  size_t polygonCount() const { return mesh->triangles.size(); }
+  size_t pointCount() const { return mesh->vertices.size(); }
+  size_t vertexCount(size_t) const { return 3; }
+  void getIndexSpacePoint(size_t n, size_t v, openvdb::Vec3d& pos) const {
+    const Vec3& p = mesh->vertices[mesh->triangles[n][v]];
+    pos = openvdb::Vec3d(p.x() * inv_voxel, p.y() * inv_voxel, p.z() * inv_voxel);
+  }
+};
+
+void initialize_openvdb_once() {
+  static std::once_flag flag;
+  std::call_once(flag, [] { openvdb::initialize(); });
+}
+
+}  // namespace
+
+struct DistanceField::Impl {
+  TriangleMesh mesh;
+  BoundingBox bounds;
+  DistanceFieldOptions options;
+  double h = 0, inv_h = 0, band = 0, refine_below = 0;
+  openvdb::FloatGrid::Ptr dist;
+  openvdb::Int32Grid::Ptr index;
+  DistanceFieldStats stats;
+
+  ClosestPoint exact_over(const int* faces, int n, const Vec3& p) const {
+    ClosestPoint best;
+    best.distance = std::numeric_limits<double>::infinity();
+    for (int k = 0; k < n; ++k) {
+      const auto& t = mesh.triangles[faces[k]];
+      const Vec3 q = closest_point_on_triangle(p, mesh.vertices[t[0]], mesh.vertices[t[1]], mesh.vertices[t[2]]);
+      const double d = (q - p).norm();
+      if (d < best.distance) {
+        best.distance = d;
+        best.point = q;
+        best.face = faces[k];
+      }
+    }
+    best.exact = n > 0;
+    return best;
+  }
+
+  ClosestPoint brute_force(const Vec3& p) const {
+    ClosestPoint best;
+    best.distance = std::numeric_limits<double>::infinity();
+    for (int f = 0; f < static_cast<int>(mesh.triangles.size()); ++f) {
+      const auto& t = mesh.triangles[f];
+      const Vec3 q = closest_point_on_triangle(p, mesh.vertices[t[0]], mesh.vertices[t[1]], mesh.vertices[t[2]]);
+      const double d = (q - p).norm();
+      if (d < best.distance) {
+        best.distance = d;
+        best.point = q;
+        best.face = f;
+      }
+    }
+    best.exact = true;
+    return best;
+  }
+
+  ClosestPoint query(const Vec3& p, bool want_point) const {
+    ClosestPoint out;
+    if (mesh.triangles.empty()) {
+      out.distance = std::numeric_limits<double>::infinity();
+      return out;
+    }
+    // Voxel centres sit at integer index coordinates (transform = uniform scale h).
+    const double x = p.x() * inv_h, y = p.y() * inv_h, z = p.z() * inv_h;
+    // Far outside the grid's index range: no lookup, just the bound.
+    constexpr double kIndexLimit = 1.0e9;
+    if (!(std::abs(x) < kIndexLimit && std::abs(y) < kIndexLimit && std::abs(z) < kIndexLimit)) {
+      out.distance = std::max(band, bounds.distance(p));
+      return out;
+    }
+    const double fx = std::floor(x), fy = std::floor(y), fz = std::floor(z);
+    const openvdb::Coord base(static_cast<int>(fx), static_cast<int>(fy), static_cast<int>(fz));
+    const double tx = x - fx, ty = y - fy, tz = z - fz;
+    auto acc = dist->getConstAccessor();
+    float v[8];
+    bool all_background = true;
+    for (int c = 0; c < 8; ++c) {
+      const openvdb::Coord ijk = base.offsetBy(c & 1, (c >> 1) & 1, (c >> 2) & 1);
+      v[c] = acc.getValue(ijk);
+      all_background = all_background && !acc.isValueOn(ijk);
+    }
+    if (all_background) {
+      if (static_cast<int>(mesh.triangles.size()) <= options.exact_fallback_triangles) return brute_force(p);
+      out.distance = std::max(band, bounds.distance(p));
+      return out;
+    }
+    const double c00 = v[0] + (v[1] - v[0]) * tx, c10 = v[2] + (v[3] - v[2]) * tx;
+    const double c01 = v[4] + (v[5] - v[4]) * tx, c11 = v[6] + (v[7] - v[6]) * tx;
+    const double c0 = c00 + (c10 - c00) * ty, c1 = c01 + (c11 - c01) * ty;
+    const double interpolated = c0 + (c1 - c0) * tz;
+    out.distance = interpolated;
+    if (interpolated >= refine_below && !want_point) return out;
+    // Near the surface: exact distance to the closest triangles of the 8 corners.
+    auto iacc = index->getConstAccessor();
+    int faces[8];
+    int n = 0;
+    for (int c = 0; c < 8; ++c) {
+      const int f = iacc.getValue(base.offsetBy(c & 1, (c >> 1) & 1, (c >> 2) & 1));
+      if (f < 0 || f >= static_cast<int>(mesh.triangles.size())) continue;
+      if (std::find(faces, faces + n, f) == faces + n) faces[n++] = f;
+    }
+    if (n == 0) return out;
+    return exact_over(faces, n, p);
+  }
+};
+
+DistanceField::DistanceField(const TriangleMesh& mesh, const DistanceFieldOptions& options) : impl_(std::make_unique<Impl>()) {
+  initialize_openvdb_once();
+  const auto start = std::chrono::steady_clock::now();
+  Impl& m = *impl_;
+  m.mesh = mesh;
+  m.bounds = bounding_box(mesh);
+  m.options = options;
+  m.h = options.voxel_size;
+  m.inv_h = 1.0 / m.h;
+  const int band_voxels = std::max(options.band_voxels, 2);
+  m.band = band_voxels * m.h;
+  m.refine_below = options.refine_below > 0 ? options.refine_below : 2.0 * m.h;
+  const auto transform = openvdb::math::Transform::createLinearTransform(m.h);
+  m.index = openvdb::Int32Grid::create(static_cast<openvdb::Int32>(openvdb::util::INVALID_IDX));
+  if (!mesh.triangles.empty()) {
+    MeshAdapter adapter{&m.mesh, m.inv_h};
+    // Unsigned: meshes may be open. No renormalisation: it smooths values near
+    // self-intersections, and we want the exact per-voxel distances.
+    m.dist = openvdb::tools::meshToVolume<openvdb::FloatGrid>(
+        adapter, *transform, static_cast<float>(band_voxels), static_cast<float>(band_voxels),
+        openvdb::tools::UNSIGNED_DISTANCE_FIELD | openvdb::tools::DISABLE_RENORMALIZATION, m.index.get());
+  } else {
+    m.dist = openvdb::FloatGrid::create(static_cast<float>(m.band));
+    m.dist->setTransform(transform);
+  }
+  m.stats.active_voxels = m.dist->activeVoxelCount();
+  m.stats.memory_bytes = m.dist->memUsage() + m.index->memUsage();
+  m.stats.build_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+DistanceField::~DistanceField() = default;
+
+double DistanceField::distance(const Vec3& p) const { return impl_->query(p, false).distance; }
+
+ClosestPoint DistanceField::closest(const Vec3& p) const { return impl_->query(p, true); }
+
+Vec3 DistanceField::gradient(const Vec3& p) const {
+  const ClosestPoint c = impl_->query(p, true);
+  if (c.face >= 0) {
+    const Vec3 d = p - c.point;
+    const double len = d.norm();
+    if (len > 1e-12) return d / len;
+    return impl_->mesh.face_normal(c.face);  // on the surface: the face normal's side is arbitrary
+  }
+  // A bound only (far away): central differences of the bound, then toward the box.
+  const double h = impl_->h;
+  Vec3 g;
+  for (int k = 0; k < 3; ++k) {
+    Vec3 e = Vec3::Zero();
+    e[k] = h;
+    g[k] = distance(p + e) - distance(p - e);
+  }
+  if (g.norm() > 0) return g.normalized();
+  const Vec3 centre = 0.5 * (impl_->bounds.min + impl_->bounds.max);
+  return (p - centre).norm() > 0 ? Vec3((p - centre).normalized()) : Vec3::UnitZ();
+}
+
+double DistanceField::voxel_size() const { return impl_->h; }
+double DistanceField::band_width() const { return impl_->band; }
+const DistanceFieldStats& DistanceField::stats() const { return impl_->stats; }
+const TriangleMesh& DistanceField::mesh() const { return impl_->mesh; }
+
+}  // namespace sheetgen

@@ -1,0 +1,225 @@
+#include "sheetgen/env/environment.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "sheetgen/env/distance_field.hpp"
+#include "sheetgen/env/ray_caster.hpp"
+
+namespace sheetgen {
+
+namespace {
+
+// Copies the listed faces of `src` into a compact mesh.
+TriangleMesh submesh(const TriangleMesh& src, const std::vector<int>& faces) {
+  TriangleMesh out;
+  std::vector<int> remap(src.vertices.size(), -1);
+  for (int f : faces) {
+    std::array<int, 3> t;
+    for (int k = 0; k < 3; ++k) {
+      int& r = remap[src.triangles[f][k]];
+      if (r < 0) {
+        r = static_cast<int>(out.vertices.size());
+        out.vertices.push_back(src.vertices[src.triangles[f][k]]);
+      }
+      t[k] = r;
+    }
+    out.triangles.push_back(t);
+  }
+  return out;
+}
+
+void append(TriangleMesh& dst, const TriangleMesh& src) {
+  const int base = static_cast<int>(dst.vertices.size());
+  dst.vertices.insert(dst.vertices.end(), src.vertices.begin(), src.vertices.end());
+  for (const auto& t : src.triangles) dst.triangles.push_back({t[0] + base, t[1] + base, t[2] + base});
+}
+
+bool contains(const std::vector<int>& v, int x) { return std::find(v.begin(), v.end(), x) != v.end(); }
+
+}  // namespace
+
+Environment::Environment(const Problem& problem, const EnvironmentOptions& options) : problem_(problem) {
+  const BoundingBox bounds = problem_.bounds();
+  const double diag = std::max(bounds.diagonal(), 1e-9);
+  const double t = problem_.material.thickness;
+  // Voxel: the sheet thickness, kept between diag/4096 (bounded grid size on
+  // big scenes) and diag/256 (enough voxels across a tiny scene).
+  const double voxel = options.voxel_size > 0 ? options.voxel_size : std::max(diag / 4096.0, std::min(t, diag / 256.0));
+  const double required = 0.5 * t + problem_.requirements.clearance;
+  const int band = options.band_voxels > 0 ? options.band_voxels : static_cast<int>(std::ceil(required / voxel)) + 3;
+  DistanceFieldOptions fo;
+  fo.voxel_size = voxel;
+  fo.band_voxels = band;
+
+  // Split every environment mesh into its rivet-area faces and the rest.
+  const int nra = static_cast<int>(problem_.rivet_areas.size());
+  face_rivet_area_.resize(problem_.meshes.size());
+  for (size_t m = 0; m < problem_.meshes.size(); ++m) face_rivet_area_[m].assign(problem_.meshes[m].mesh.triangles.size(), -1);
+  for (int r = 0; r < nra; ++r)
+    for (int f : problem_.rivet_areas[r].faces) face_rivet_area_[problem_.rivet_areas[r].mesh][f] = r;
+
+  TriangleMesh obstacles, all_ra;
+  for (size_t m = 0; m < problem_.meshes.size(); ++m) {
+    std::vector<int> plain;
+    for (int f = 0; f < static_cast<int>(face_rivet_area_[m].size()); ++f)
+      if (face_rivet_area_[m][f] < 0) plain.push_back(f);
+    append(obstacles, submesh(problem_.meshes[m].mesh, plain));
+  }
+  obstacles_ = std::make_unique<DistanceField>(obstacles, fo);
+  for (int r = 0; r < nra; ++r) {
+    const auto& ra = problem_.rivet_areas[r];
+    TriangleMesh ram = submesh(problem_.meshes[ra.mesh].mesh, ra.faces);
+    rivet_bounds_.push_back(bounding_box(ram));
+    append(all_ra, ram);
+    rivet_fields_.push_back(std::make_unique<DistanceField>(ram, fo));
+  }
+  all_rivet_areas_ = std::make_unique<DistanceField>(all_ra, fo);
+
+  // Ray caster: every environment mesh whole, then every load box.
+  std::vector<TriangleMesh> boxes;
+  for (const auto& l : problem_.loads) boxes.push_back(l.box_mesh());
+  std::vector<const TriangleMesh*> geoms;
+  for (const auto& m : problem_.meshes) geoms.push_back(&m.mesh);
+  for (const auto& b : boxes) geoms.push_back(&b);
+  rays_ = std::make_unique<RayCaster>(geoms);
+}
+
+Environment::~Environment() = default;
+
+double Environment::voxel_size() const { return obstacles_->voxel_size(); }
+
+const DistanceField& Environment::obstacle_field() const { return *obstacles_; }
+
+double Environment::clearance(const Vec3& p) const { return distance_excluding(p, AllowedContacts{}); }
+
+double Environment::clearance(const Vec3& p, const AllowedContacts& allowed) const { return distance_excluding(p, allowed); }
+
+double Environment::distance_excluding(const Vec3& p, const AllowedContacts& allowed) const {
+  double d = obstacles_->distance(p);
+  if (!rivet_fields_.empty()) {
+    if (allowed.rivet_areas.empty()) {
+      d = std::min(d, all_rivet_areas_->distance(p));
+    } else if (all_rivet_areas_->distance(p) < d) {
+      // Some rivet area is nearer than the plain obstacles: ask the ones not allowed.
+      for (int r = 0; r < static_cast<int>(rivet_fields_.size()); ++r) {
+        if (contains(allowed.rivet_areas, r) || rivet_bounds_[r].distance(p) >= d) continue;
+        d = std::min(d, rivet_fields_[r]->distance(p));
+      }
+    }
+  }
+  for (int l = 0; l < static_cast<int>(problem_.loads.size()); ++l) {
+    if (contains(allowed.loads, l)) continue;
+    d = std::min(d, problem_.loads[l].signed_distance(p));
+  }
+  return d;
+}
+
+Vec3 Environment::clearance_gradient(const Vec3& p) const {
+  // The gradient of a minimum is the gradient of the component that attains it.
+  double best = obstacles_->distance(p);
+  Vec3 g = obstacles_->gradient(p);
+  if (!rivet_fields_.empty()) {
+    const double d = all_rivet_areas_->distance(p);
+    if (d < best) {
+      best = d;
+      g = all_rivet_areas_->gradient(p);
+    }
+  }
+  for (const auto& load : problem_.loads) {
+    const double d = load.signed_distance(p);
+    if (d < best) {
+      best = d;
+      // Central differences of the exact box distance (cheap and robust at edges).
+      const double h = 1e-6 * std::max(1.0, load.size.norm());
+      for (int k = 0; k < 3; ++k) {
+        Vec3 e = Vec3::Zero();
+        e[k] = h;
+        g[k] = load.signed_distance(p + e) - load.signed_distance(p - e);
+      }
+      if (g.norm() > 0) g.normalize();
+    }
+  }
+  return g;
+}
+
+double Environment::rivet_area_distance(int ra, const Vec3& p) const {
+  if (ra < 0 || ra >= static_cast<int>(rivet_fields_.size())) throw std::out_of_range("rivet area index " + std::to_string(ra) + " is out of range");
+  return rivet_fields_[ra]->distance(p);
+}
+
+int Environment::rivet_area_of_face(int mesh, int face) const {
+  if (mesh < 0 || mesh >= static_cast<int>(face_rivet_area_.size())) return -1;
+  if (face < 0 || face >= static_cast<int>(face_rivet_area_[mesh].size())) return -1;
+  return face_rivet_area_[mesh][face];
+}
+
+std::optional<RayHit> Environment::cast_ray(const Vec3& origin, const Vec3& direction, double max_distance) const {
+  auto h = rays_->first_hit(origin, direction, max_distance, 0.0);
+  if (!h) return std::nullopt;
+  RayHit hit;
+  hit.distance = h->distance;
+  hit.point = h->point;
+  hit.normal = h->normal;
+  hit.face = h->face;
+  const int nm = static_cast<int>(problem_.meshes.size());
+  if (h->geometry < nm) {
+    hit.mesh = h->geometry;
+    hit.rivet_area = face_rivet_area_[hit.mesh][hit.face];
+  } else {
+    hit.load = h->geometry - nm;
+  }
+  return hit;
+}
+
+ContactResult Environment::polygon_contact(const std::vector<Vec3>& polygon, double required, const AllowedContacts& allowed,
+                                           double sample_spacing) const {
+  ContactResult result;
+  result.min_clearance = std::numeric_limits<double>::infinity();
+  if (polygon.size() < 3) {
+    for (const auto& p : polygon) {
+      const double d = distance_excluding(p, allowed);
+      ++result.samples;
+      if (d < result.min_clearance) { result.min_clearance = d; result.worst_point = p; }
+    }
+    result.clear = result.min_clearance >= required;
+    return result;
+  }
+  const double leaf = 0.5 * (sample_spacing > 0 ? sample_spacing : 0.5 * voxel_size());
+  // Fan triangulation (tabs are convex), then recursive 4-way subdivision: a
+  // triangle whose bounding sphere (centre c, radius r) satisfies d(c) >= required + r
+  // is clear as a whole, because distance is 1-Lipschitz.
+  struct Tri { Vec3 a, b, c; };
+  std::vector<Tri> stack;
+  for (size_t k = 1; k + 1 < polygon.size(); ++k) stack.push_back({polygon[0], polygon[k], polygon[k + 1]});
+  while (!stack.empty()) {
+    const Tri t = stack.back();
+    stack.pop_back();
+    const Vec3 c = (t.a + t.b + t.c) / 3.0;
+    const double r = std::max({(t.a - c).norm(), (t.b - c).norm(), (t.c - c).norm()});
+    const double d = distance_excluding(c, allowed);
+    ++result.samples;
+    if (d >= required + r) {
+      if (d - r < result.min_clearance) { result.min_clearance = d - r; result.worst_point = c; }
+      continue;
+    }
+    if (r <= leaf) {
+      if (d < result.min_clearance) { result.min_clearance = d; result.worst_point = c; }
+      if (d < required) {
+        result.clear = false;
+        return result;  // one violation decides; the caller wants a yes/no and where
+      }
+      continue;
+    }
+    const Vec3 ab = 0.5 * (t.a + t.b), bc = 0.5 * (t.b + t.c), ca = 0.5 * (t.c + t.a);
+    stack.push_back({t.a, ab, ca});
+    stack.push_back({ab, t.b, bc});
+    stack.push_back({ca, bc, t.c});
+    stack.push_back({ab, bc, ca});
+  }
+  result.clear = true;
+  return result;
+}
+
+}  // namespace sheetgen

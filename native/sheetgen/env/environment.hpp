@@ -1,0 +1,91 @@
+#pragma once
+// The environment a part lives in: every obstacle, every rivet area, every load
+// box, and the fast queries the search asks of them. OpenVDB and Embree stay
+// behind DistanceField and RayCaster; this header includes neither.
+#include <memory>
+#include <optional>
+#include <vector>
+
+#include "sheetgen/core/problem.hpp"
+
+namespace sheetgen {
+
+class DistanceField;
+class RayCaster;
+
+struct EnvironmentOptions {
+  double voxel_size = 0;  // m; 0 = auto: clamp(t, diag/4096, diag/256), see docs/environment.md
+  int band_voxels = 0;    // half-width of the narrow band, voxels; 0 = auto (clearance need + 3)
+};
+
+// Obstacles a polygon may touch without counting as a collision: its own rivet
+// area (a rivet flange lying on it) and its own load (the base tab under it).
+struct AllowedContacts {
+  std::vector<int> rivet_areas;  // indices into Problem::rivet_areas
+  std::vector<int> loads;        // indices into Problem::loads
+};
+
+struct RayHit {
+  double distance = 0;     // m along the unit direction
+  Vec3 point = Vec3::Zero();
+  Vec3 normal = Vec3::Zero();  // unit geometric normal of the face hit
+  int mesh = -1;           // environment mesh index, or -1 for a load box
+  int face = -1;           // face index in that mesh (or in the box mesh)
+  int load = -1;           // load index when a load box was hit
+  int rivet_area = -1;     // rivet area the face belongs to, or -1
+};
+
+struct ContactResult {
+  bool clear = true;          // every point keeps >= required clearance from non-allowed obstacles
+  double min_clearance = 0;   // m, smallest clearance found on the polygon (lower bound where clear)
+  Vec3 worst_point = Vec3::Zero();
+  int samples = 0;            // field queries spent
+};
+
+class Environment {
+ public:
+  explicit Environment(const Problem& problem, const EnvironmentOptions& options = {});
+  ~Environment();
+  Environment(const Environment&) = delete;
+  Environment& operator=(const Environment&) = delete;
+
+  const Problem& problem() const { return problem_; }
+  double voxel_size() const;  // m, of the clearance field
+
+  // Distance from p to the nearest obstacle of any kind (environment faces,
+  // rivet areas, load boxes), m; negative only inside a load box.
+  double clearance(const Vec3& p) const;
+  // Same, ignoring the allowed contacts.
+  double clearance(const Vec3& p, const AllowedContacts& allowed) const;
+  // Unit direction of steepest increase of clearance(p) (away from the nearest obstacle).
+  Vec3 clearance_gradient(const Vec3& p) const;
+
+  // Distance from p to rivet area `ra`, m (exact near it; see docs/environment.md).
+  double rivet_area_distance(int ra, const Vec3& p) const;
+  int rivet_area_count() const { return static_cast<int>(problem_.rivet_areas.size()); }
+  // Rivet area of a face of environment mesh `mesh`, or -1.
+  int rivet_area_of_face(int mesh, int face) const;
+  // The field of the plain obstacles (environment faces outside rivet areas), for benchmarks and diagnostics.
+  const DistanceField& obstacle_field() const;
+
+  // First obstacle hit along the ray o + s d, 0 < s <= max_distance (d need not be unit).
+  std::optional<RayHit> cast_ray(const Vec3& origin, const Vec3& direction, double max_distance) const;
+
+  // Is a planar polygon (a tab's mid-surface, m) at least `required` m from every
+  // obstacle except the allowed contacts? Conservative to `sample_spacing` (m, 0 = voxel/2).
+  ContactResult polygon_contact(const std::vector<Vec3>& polygon, double required,
+                                const AllowedContacts& allowed, double sample_spacing = 0) const;
+
+ private:
+  double distance_excluding(const Vec3& p, const AllowedContacts& allowed) const;
+
+  Problem problem_;
+  std::unique_ptr<DistanceField> obstacles_;                  // environment faces that are not rivet areas
+  std::vector<std::unique_ptr<DistanceField>> rivet_fields_;  // one per rivet area
+  std::unique_ptr<DistanceField> all_rivet_areas_;            // union, for quick rejection
+  std::vector<BoundingBox> rivet_bounds_;
+  std::unique_ptr<RayCaster> rays_;
+  std::vector<std::vector<int>> face_rivet_area_;  // [mesh][face] -> rivet area or -1
+};
+
+}  // namespace sheetgen

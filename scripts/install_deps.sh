@@ -1,0 +1,39 @@
+#!/usr/bin/env bash
+# Installs every Debian package sheetgen needs to build, test and run.
+# Does nothing (no apt-get update either) when all of them are already present.
+set -euo pipefail
+
+PACKAGES=(
+  # build
+  build-essential cmake ninja-build ccache pkg-config
+  # core libraries
+  libopenvdb-dev libboost-iostreams-dev libtbb-dev libblosc-dev zlib1g-dev
+  libembree-dev libeigen3-dev libsuitesparse-dev nlohmann-json3-dev libcli11-dev
+  # tests and benchmarks
+  libgtest-dev libgmock-dev libbenchmark-dev
+  # python module (built for the system Python 3.11 that Debian's Blender runs)
+  python3-dev pybind11-dev python3-numpy
+  # runtime, reference and check tools
+  blender calculix-ccx python3-ezdxf python3-shapely python3-matplotlib
+  # fuzzing and sanitizers (clang + libFuzzer runtime)
+  clang libclang-rt-14-dev
+)
+
+missing=()
+for p in "${PACKAGES[@]}"; do
+  if ! dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed"; then
+    missing+=("$p")
+  fi
+done
+
+if [ ${#missing[@]} -eq 0 ]; then
+  echo "install_deps: all ${#PACKAGES[@]} packages present"
+  exit 0
+fi
+
+echo "install_deps: installing ${missing[*]}"
+SUDO=""
+if [ "$(id -u)" -ne 0 ]; then SUDO="sudo"; fi
+export DEBIAN_FRONTEND=noninteractive
+$SUDO apt-get update -qq
+$SUDO apt-get install -y -qq --no-install-recommends "${missing[@]}" </dev/null
