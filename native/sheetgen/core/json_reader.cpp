@@ -1,6 +1,7 @@
 #include "sheetgen/core/json_reader.hpp"
 
 #include <cmath>
+#include <cstring>
 
 #include "sheetgen/core/input_error.hpp"
 
@@ -64,6 +65,10 @@ std::string JsonNode::as_string() const {
 double JsonNode::as_number() const {
   // nlohmann parses the non-standard tokens NaN/Infinity as errors, but a huge
   // literal such as 1e999 becomes inf: both end here as "not a finite number".
+  if (value_->is_string()) {
+    const std::string& str = value_->get_ref<const std::string&>();
+    if (str.rfind(kNonFiniteMarker, 0) == 0) fail("expected a finite number, got " + str.substr(std::strlen(kNonFiniteMarker)));
+  }
   if (!value_->is_number()) fail("expected a number, got " + type_name());
   double v = value_->get<double>();
   if (!std::isfinite(v)) fail("expected a finite number, got " + std::to_string(v));

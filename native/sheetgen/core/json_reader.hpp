@@ -9,6 +9,9 @@
 
 namespace sheetgen {
 
+// Prefix of the strings that stand for NaN/Infinity tokens in a problem file.
+inline constexpr const char* kNonFiniteMarker = "@sheetgen-non-finite:";
+
 class JsonNode {
  public:
   JsonNode(const nlohmann::json& value, std::string file, std::string path)

@@ -1,6 +1,7 @@
 #include "sheetgen/core/problem.hpp"
 
 #include <algorithm>
+#include <cstring>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -322,10 +323,49 @@ void parse_settings(const JsonNode& root, Problem& p) {
 
 }  // namespace
 
+namespace {
+
+// Python's json module writes NaN, Infinity and -Infinity, which JSON does not
+// allow. Rather than a parse error at a byte offset, turn them into marked
+// strings so the field that holds one is named in the error.
+std::string mark_non_finite_tokens(const std::string& text) {
+  std::string out;
+  out.reserve(text.size());
+  bool in_string = false;
+  for (size_t i = 0; i < text.size(); ++i) {
+    const char c = text[i];
+    if (in_string) {
+      out += c;
+      if (c == '\\' && i + 1 < text.size()) out += text[++i];
+      else if (c == '"') in_string = false;
+      continue;
+    }
+    if (c == '"') {
+      in_string = true;
+      out += c;
+      continue;
+    }
+    bool matched = false;
+    for (const char* token : {"-Infinity", "Infinity", "NaN"}) {
+      const size_t n = std::strlen(token);
+      if (text.compare(i, n, token) == 0) {
+        out += std::string("\"") + kNonFiniteMarker + token + "\"";
+        i += n - 1;
+        matched = true;
+        break;
+      }
+    }
+    if (!matched) out += c;
+  }
+  return out;
+}
+
+}  // namespace
+
 Problem parse_problem(const std::string& json_text, const std::string& source, const std::string& base_dir) {
   nlohmann::json doc;
   try {
-    doc = nlohmann::json::parse(json_text);
+    doc = nlohmann::json::parse(mark_non_finite_tokens(json_text));
   } catch (const nlohmann::json::parse_error& e) {
     // e.what() carries byte position and reason; keep the part after the id.
     std::string what = e.what();

@@ -1,6 +1,7 @@
 #pragma once
 // A triangle mesh in metres. Open surfaces are allowed (a floor may be one plane).
 #include <Eigen/Core>
+#include <Eigen/Geometry>  // cross products, quaternions: used wherever Vec3 is
 #include <array>
 #include <limits>
 #include <vector>

@@ -44,6 +44,42 @@ struct DistanceField::Impl {
   openvdb::FloatGrid::Ptr dist;
   openvdb::Int32Grid::Ptr index;
   DistanceFieldStats stats;
+  // Faces around each vertex (CSR), for the closest-point descent.
+  std::vector<int> vertex_face_start, vertex_faces;
+
+  void build_adjacency() {
+    vertex_face_start.assign(mesh.vertices.size() + 1, 0);
+    for (const auto& t : mesh.triangles)
+      for (int v : t) ++vertex_face_start[v + 1];
+    for (size_t v = 0; v < mesh.vertices.size(); ++v) vertex_face_start[v + 1] += vertex_face_start[v];
+    vertex_faces.resize(vertex_face_start.back());
+    std::vector<int> fill(vertex_face_start.begin(), vertex_face_start.end() - 1);
+    for (int f = 0; f < static_cast<int>(mesh.triangles.size()); ++f)
+      for (int v : mesh.triangles[f]) vertex_faces[fill[v]++] = f;
+  }
+
+  // The grid's candidate may be a near-closest neighbour of the true closest
+  // face (same distance to second order, different closest point). Walk to
+  // vertex-adjacent faces while that gets closer.
+  ClosestPoint descend(ClosestPoint best, const Vec3& p) const {
+    for (int step = 0; step < 64; ++step) {
+      const int from = best.face;
+      for (int v : mesh.triangles[from])
+        for (int k = vertex_face_start[v]; k < vertex_face_start[v + 1]; ++k) {
+          const int f = vertex_faces[k];
+          const auto& t = mesh.triangles[f];
+          const Vec3 q = closest_point_on_triangle(p, mesh.vertices[t[0]], mesh.vertices[t[1]], mesh.vertices[t[2]]);
+          const double d = (q - p).norm();
+          if (d < best.distance - 1e-15) {
+            best.distance = d;
+            best.point = q;
+            best.face = f;
+          }
+        }
+      if (best.face == from) break;
+    }
+    return best;
+  }
 
   ClosestPoint exact_over(const int* faces, int n, const Vec3& p) const {
     ClosestPoint best;
@@ -125,7 +161,8 @@ struct DistanceField::Impl {
       if (std::find(faces, faces + n, f) == faces + n) faces[n++] = f;
     }
     if (n == 0) return out;
-    return exact_over(faces, n, p);
+    const ClosestPoint best = exact_over(faces, n, p);
+    return want_point ? descend(best, p) : best;
   }
 };
 
@@ -154,6 +191,7 @@ DistanceField::DistanceField(const TriangleMesh& mesh, const DistanceFieldOption
     m.dist = openvdb::FloatGrid::create(static_cast<float>(m.band));
     m.dist->setTransform(transform);
   }
+  m.build_adjacency();
   m.stats.active_voxels = m.dist->activeVoxelCount();
   m.stats.memory_bytes = m.dist->memUsage() + m.index->memUsage();
   m.stats.build_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();

@@ -1,0 +1,175 @@
+// Problem files: defaults, and every bad input of issue 2 giving one sentence
+// that names the file, the field and the problem - through the library and
+// through the real `sheetgen check` (exit code 1).
+#include "sheetgen/core/problem.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <sys/wait.h>
+
+#include "sheetgen/core/input_error.hpp"
+
+namespace sheetgen {
+namespace {
+
+namespace fs = std::filesystem;
+using nlohmann::json;
+
+fs::path temp_dir() {
+  fs::path d = fs::temp_directory_path() / ("sheetgen_problem_test_" + std::to_string(::getpid()));
+  fs::create_directories(d);
+  return d;
+}
+
+const char* kWallObj =
+    "v 0 -0.3 0\nv 0 0.3 0\nv 0 0.3 0.6\nv 0 -0.3 0.6\n"
+    "f 1 2 3\nf 1 3 4\n";
+
+json valid_problem() {
+  return json::parse(R"({
+    "format": "sheetgen-problem/1",
+    "environment": {"meshes": [
+      {"name": "wall", "file": "wall.obj"},
+      {"name": "floor", "vertices": [[0,-0.3,0],[0.6,-0.3,0],[0.6,0.3,0],[0,0.3,0]], "triangles": [[0,1,2],[0,2,3]]}
+    ]},
+    "rivet_areas": [{"name": "wall_ra", "mesh": "wall", "faces": [0, 1]}, {"name": "floor_ra", "mesh": "floor", "faces": [1]}],
+    "loads": [{"name": "box", "center": [0.3, 0, 0.3], "size": [0.1, 0.1, 0.1], "force": [0, 0, -100]}]
+  })");
+}
+
+struct Files {
+  fs::path dir = temp_dir();
+  Files() { std::ofstream(dir / "wall.obj") << kWallObj; }
+  ~Files() { std::error_code ec; fs::remove_all(dir, ec); }
+  std::string write(const std::string& name, const std::string& text) {
+    std::ofstream(dir / name) << text;
+    return (dir / name).string();
+  }
+};
+
+// Runs the real CLI; returns exit code and the first line of stderr.
+std::pair<int, std::string> run_check(const std::string& path) {
+  const std::string cmd = std::string(SHEETGEN_BINARY_DIR) + "/native/cli/sheetgen check '" + path + "' 2>&1 >/dev/null";
+  FILE* pipe = popen(cmd.c_str(), "r");
+  std::string out;
+  char buf[4096];
+  while (pipe && fgets(buf, sizeof buf, pipe)) out += buf;
+  const int status = pipe ? pclose(pipe) : -1;
+  return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, out};
+}
+
+TEST(Problem, ValidProblemGetsDocumentedDefaults) {
+  Files files;
+  const std::string path = files.write("problem.json", valid_problem().dump());
+  const Problem p = load_problem(path);
+  ASSERT_EQ(p.meshes.size(), 2u);
+  EXPECT_EQ(p.triangle_count(), 4);
+  EXPECT_NEAR(p.rivet_areas[0].area_m2, 0.36, 1e-12);   // the whole 0.6 x 0.6 wall
+  EXPECT_NEAR(p.rivet_areas[1].area_m2, 0.18, 1e-12);   // half the floor
+  EXPECT_DOUBLE_EQ(p.material.thickness, 1.6e-3);
+  EXPECT_DOUBLE_EQ(p.material.youngs_modulus, 73.1e9);
+  EXPECT_DOUBLE_EQ(p.manufacturing.bend_radius, 4 * 1.6e-3);                 // R = 4 t
+  EXPECT_DOUBLE_EQ(p.manufacturing.min_flange, 4 * 1.6e-3 + 4 * 1.6e-3);     // 4 t + R
+  EXPECT_DOUBLE_EQ(p.requirements.safety_factor, 1.5);
+  EXPECT_DOUBLE_EQ(p.requirements.compliance_limit(100.0), 100.0 * 1e-3);    // default 1 mm deflection
+  EXPECT_EQ(p.search.chains, 10);
+  EXPECT_EQ(p.search.iterations, 1000);
+  EXPECT_TRUE(p.loads[0].rotation.isApprox(Eigen::Quaterniond::Identity()));
+  EXPECT_EQ(run_check(path).first, 0);
+}
+
+struct BadCase {
+  const char* label;
+  std::function<void(json&, Files&)> edit;
+  const char* field;    // must appear in the message
+  const char* problem;  // must appear in the message
+};
+
+TEST(Problem, EveryBadInputGivesOneSentenceAndExitCodeOne) {
+  const std::vector<BadCase> cases = {
+      {"missing field", [](json& j, Files&) { j["loads"][0].erase("force"); }, "loads[0].force", "required field is missing"},
+      {"wrong type", [](json& j, Files&) { j["loads"][0]["size"] = "big"; }, "loads[0].size", "expected an array of 3 numbers"},
+      {"NaN", [](json& j, Files&) { j["loads"][0]["force"][1] = "NAN_TOKEN"; }, "loads[0].force[1]", "finite number, got NaN"},
+      {"infinity", [](json& j, Files&) { j["loads"][0]["center"][0] = "INF_TOKEN"; }, "loads[0].center[0]", "finite number, got Infinity"},
+      {"negative thickness", [](json& j, Files&) { j["material"]["thickness"] = -0.0016; }, "material.thickness", "greater than zero"},
+      {"face index out of range", [](json& j, Files&) { j["rivet_areas"][1]["faces"][0] = 7; }, "rivet_areas[1].faces[0]", "out of range"},
+      {"rivet area with no faces", [](json& j, Files&) { j["rivet_areas"][0]["faces"] = json::array(); }, "rivet_areas[0].faces", "has no faces"},
+      {"load box of zero size", [](json& j, Files&) { j["loads"][0]["size"] = {0.1, 0.0, 0.1}; }, "loads[0].size", "must be positive"},
+      {"unreadable mesh file", [](json& j, Files& f) { f.write("broken.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 x\n"); j["environment"]["meshes"][0]["file"] = "broken.obj"; },
+       "environment.meshes[0].file", "line 4"},
+      {"missing mesh file", [](json& j, Files&) { j["environment"]["meshes"][0]["file"] = "nowhere.obj"; }, "environment.meshes[0].file", "does not exist"},
+      {"empty mesh", [](json& j, Files& f) { f.write("empty.obj", "# nothing\n"); j["environment"]["meshes"][0]["file"] = "empty.obj"; },
+       "environment.meshes[0]", "the mesh is empty"},
+      {"non-finite vertex", [](json& j, Files& f) { f.write("nan.obj", "v 0 0 0\nv 1 nan 0\nv 0 1 0\nf 1 2 3\n"); j["environment"]["meshes"][0]["file"] = "nan.obj"; },
+       "line 2", "not finite"},
+      {"non-finite inline vertex", [](json& j, Files&) { j["environment"]["meshes"][1]["vertices"][2][0] = "NAN_TOKEN"; }, "environment.meshes[1].vertices[2][0]", "finite number"},
+      {"unknown field", [](json& j, Files&) { j["requirments"] = json::object(); }, "(top level)", "unknown field 'requirments'"},
+      {"wrong format", [](json& j, Files&) { j["format"] = "sheetgen-problem/9"; }, "format", "unsupported format"},
+      {"unknown rivet mesh", [](json& j, Files&) { j["rivet_areas"][0]["mesh"] = "ceiling"; }, "rivet_areas[0].mesh", "no environment mesh is named 'ceiling'"},
+      {"inline triangle index", [](json& j, Files&) { j["environment"]["meshes"][1]["triangles"][1][2] = 9; }, "environment.meshes[1].triangles[1][2]", "out of range"},
+  };
+  Files files;
+  for (const auto& c : cases) {
+    json j = valid_problem();
+    BadCase bc = c;
+    bc.edit(j, files);
+    std::string text = j.dump();
+    // Python's json module writes NaN and Infinity as bare tokens; so do we here.
+    for (auto [marker, token] : {std::pair{"\"NAN_TOKEN\"", "NaN"}, std::pair{"\"INF_TOKEN\"", "Infinity"}})
+      for (size_t pos; (pos = text.find(marker)) != std::string::npos;) text.replace(pos, std::strlen(marker), token);
+    const std::string path = files.write(std::string("bad_") + std::to_string(&c - &cases[0]) + ".json", text);
+    try {
+      load_problem(path);
+      ADD_FAILURE() << c.label << ": accepted";
+    } catch (const InputError& e) {
+      const std::string msg = e.what();
+      EXPECT_NE(msg.find(path), std::string::npos) << c.label << ": file not named in: " << msg;
+      EXPECT_NE(msg.find(c.field), std::string::npos) << c.label << ": field '" << c.field << "' not named in: " << msg;
+      EXPECT_NE(msg.find(c.problem), std::string::npos) << c.label << ": problem '" << c.problem << "' not in: " << msg;
+      EXPECT_EQ(msg.find('\n'), std::string::npos) << c.label << ": more than one line";
+    }
+    const auto [code, err] = run_check(path);
+    EXPECT_EQ(code, 1) << c.label;
+    EXPECT_EQ(err.rfind("sheetgen: ", 0), 0u) << c.label << ": " << err;
+    EXPECT_NE(err.find(c.field), std::string::npos) << c.label << ": " << err;
+  }
+}
+
+TEST(Problem, NotJsonAndMissingFileAreOneLine) {
+  Files files;
+  const std::string path = files.write("truncated.json", valid_problem().dump().substr(0, 120));
+  const auto [code, err] = run_check(path);
+  EXPECT_EQ(code, 1);
+  EXPECT_NE(err.find("is not valid JSON"), std::string::npos) << err;
+  const auto [code2, err2] = run_check((files.dir / "absent.json").string());
+  EXPECT_EQ(code2, 1);
+  EXPECT_NE(err2.find("file does not exist"), std::string::npos) << err2;
+}
+
+TEST(Problem, LoadBoxGeometry) {
+  Load l;
+  l.center = Vec3(1, 2, 3);
+  l.size = Vec3(0.2, 0.4, 0.6);
+  l.rotation = Eigen::Quaterniond(Eigen::AngleAxisd(M_PI / 2, Vec3::UnitZ()));
+  // Local +x maps to world +y under a quarter turn about z.
+  EXPECT_NEAR(l.signed_distance(Vec3(1, 2 + 0.1 + 0.05, 3)), 0.05, 1e-12);
+  EXPECT_NEAR(l.signed_distance(Vec3(1, 2, 3)), -0.1, 1e-12);
+  const auto bottom = l.bottom_face();
+  for (const auto& c : bottom) EXPECT_NEAR(c.z(), 3 - 0.3, 1e-12);
+  const TriangleMesh box = l.box_mesh();
+  EXPECT_TRUE(box.is_closed());
+  EXPECT_NEAR(box.area(), 2 * (0.2 * 0.4 + 0.4 * 0.6 + 0.2 * 0.6), 1e-12);
+  // Outward normals: each face normal points away from the centre.
+  for (int f = 0; f < 12; ++f) {
+    const auto& t = box.triangles[f];
+    const Vec3 c = (box.vertices[t[0]] + box.vertices[t[1]] + box.vertices[t[2]]) / 3.0;
+    EXPECT_GT(box.face_normal(f).dot(c - l.center), 0);
+  }
+}
+
+}  // namespace
+}  // namespace sheetgen

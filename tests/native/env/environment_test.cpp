@@ -1,0 +1,118 @@
+#include "sheetgen/env/environment.hpp"
+
+#include <gtest/gtest.h>
+
+#include "test_meshes.hpp"
+
+namespace sheetgen {
+namespace {
+
+// A floor z = 0 (0.6 m square, 12 x 12 cells) whose central 4 x 4 cells are a rivet area,
+// and one load box above it.
+Problem floor_problem() {
+  Problem p;
+  p.source = "<test>";
+  EnvironmentMesh floor{"floor", testing::plane(Vec3::Zero(), Vec3::UnitZ(), 0.6, 12), "<inline>"};
+  p.meshes.push_back(floor);
+  RivetAreaSpec ra;
+  ra.name = "centre";
+  ra.mesh = 0;
+  for (int j = 4; j < 8; ++j)
+    for (int i = 4; i < 8; ++i) {
+      ra.faces.push_back(2 * (j * 12 + i));
+      ra.faces.push_back(2 * (j * 12 + i) + 1);
+    }
+  p.rivet_areas.push_back(ra);
+  Load l;
+  l.name = "box";
+  l.center = Vec3(0.2, 0.2, 0.2);
+  l.size = Vec3(0.1, 0.1, 0.1);
+  l.force = Vec3(0, 0, -100);
+  p.loads.push_back(l);
+  p.manufacturing.bend_radius = 4 * p.material.thickness;
+  return p;
+}
+
+std::vector<Vec3> square(const Vec3& c, double half, double z) {
+  return {c + Vec3(-half, -half, z), c + Vec3(half, -half, z), c + Vec3(half, half, z), c + Vec3(-half, half, z)};
+}
+
+TEST(Environment, ClearanceCombinesFieldsAndBoxes) {
+  const Problem p = floor_problem();
+  Environment env(p);
+  // 5 cm above the plain floor, far from the box: 5 cm.
+  EXPECT_NEAR(env.clearance(Vec3(-0.25, -0.25, 0.05)), 0.05, 1e-9);
+  // Just below the box bottom (z = 0.15): the box is nearer than the floor.
+  EXPECT_NEAR(env.clearance(Vec3(0.2, 0.2, 0.14)), 0.01, 1e-9);
+  // Inside the box: negative.
+  EXPECT_NEAR(env.clearance(Vec3(0.2, 0.2, 0.2)), -0.05, 1e-9);
+  // Gradient above the floor points up.
+  EXPECT_NEAR(env.clearance_gradient(Vec3(-0.25, -0.25, 0.003)).z(), 1.0, 1e-9);
+}
+
+TEST(Environment, RivetFlangeOnItsAreaIsAllowedButNotOffIt) {
+  const Problem p = floor_problem();
+  Environment env(p);
+  const double t = p.material.thickness, required = 0.5 * t + p.requirements.clearance;
+  // A 6 cm flange lying flush (mid-surface t/2 above) in the middle of the 20 cm rivet area.
+  const auto flange = square(Vec3::Zero(), 0.03, 0.5 * t);
+  EXPECT_FALSE(env.polygon_contact(flange, required, AllowedContacts{}).clear);
+  EXPECT_TRUE(env.polygon_contact(flange, required, AllowedContacts{{0}, {}}).clear);
+  // The same flange shifted so it hangs 1 cm past the rivet area's edge (x = 0.1): a collision with the plain floor.
+  const auto hanging = square(Vec3(0.08, 0, 0), 0.03, 0.5 * t);
+  const ContactResult r = env.polygon_contact(hanging, required, AllowedContacts{{0}, {}});
+  EXPECT_FALSE(r.clear);
+  EXPECT_GT(r.worst_point.x(), 0.1 - 0.01);  // found past the edge, where the plain floor is
+}
+
+TEST(Environment, BaseTabUnderItsLoadIsAllowed) {
+  const Problem p = floor_problem();
+  Environment env(p);
+  const double t = p.material.thickness, required = 0.5 * t + p.requirements.clearance;
+  const auto base = square(Vec3(0.2, 0.2, 0), 0.05, 0.15 - 0.5 * t);
+  EXPECT_FALSE(env.polygon_contact(base, required, AllowedContacts{}).clear);
+  EXPECT_TRUE(env.polygon_contact(base, required, AllowedContacts{{}, {0}}).clear);
+}
+
+TEST(Environment, TabThroughTheFloorCollides) {
+  const Problem p = floor_problem();
+  Environment env(p);
+  // A vertical tab crossing z = 0 in the plain part of the floor.
+  const std::vector<Vec3> tab = {Vec3(-0.25, -0.2, -0.05), Vec3(-0.25, -0.1, -0.05), Vec3(-0.25, -0.1, 0.05), Vec3(-0.25, -0.2, 0.05)};
+  const ContactResult r = env.polygon_contact(tab, 0.5 * p.material.thickness, AllowedContacts{});
+  EXPECT_FALSE(r.clear);
+  EXPECT_LT(r.min_clearance, 0.5 * p.material.thickness);
+  // Lifted 10 cm, it is clear and the bound it reports is honest (>= required).
+  const std::vector<Vec3> lifted = {Vec3(-0.25, -0.2, 0.1), Vec3(-0.25, -0.1, 0.1), Vec3(-0.25, -0.1, 0.2), Vec3(-0.25, -0.2, 0.2)};
+  const ContactResult ok = env.polygon_contact(lifted, 0.5 * p.material.thickness, AllowedContacts{});
+  EXPECT_TRUE(ok.clear);
+  EXPECT_LE(ok.min_clearance, 0.1 + 1e-9);
+}
+
+TEST(Environment, RaysReportRivetAreasAndLoads) {
+  const Problem p = floor_problem();
+  Environment env(p);
+  auto down = env.cast_ray(Vec3(0.01, 0.01, 0.5), Vec3(0, 0, -1), 10);
+  ASSERT_TRUE(down.has_value());
+  EXPECT_NEAR(down->distance, 0.5, 1e-9);
+  EXPECT_EQ(down->rivet_area, 0);
+  auto plain = env.cast_ray(Vec3(-0.25, -0.25, 0.5), Vec3(0, 0, -1), 10);
+  ASSERT_TRUE(plain.has_value());
+  EXPECT_EQ(plain->rivet_area, -1);
+  auto box = env.cast_ray(Vec3(0.2, 0.2, 0.5), Vec3(0, 0, -1), 10);
+  ASSERT_TRUE(box.has_value());
+  EXPECT_EQ(box->load, 0);
+  EXPECT_NEAR(box->distance, 0.25, 1e-9);
+}
+
+TEST(Environment, RivetAreaDistanceIsExact) {
+  const Problem p = floor_problem();
+  Environment env(p);
+  // The rivet area is the square |x|,|y| <= 0.1 of z = 0.
+  EXPECT_NEAR(env.rivet_area_distance(0, Vec3(0, 0, 0.3)), 0.3, 1e-9);
+  EXPECT_NEAR(env.rivet_area_distance(0, Vec3(0.4, 0, 0)), 0.3, 1e-9);
+  EXPECT_NEAR(env.rivet_area_distance(0, Vec3(0.13, 0.14, 0.0)), 0.05, 1e-9);
+}
+
+}  // namespace
+}  // namespace sheetgen
