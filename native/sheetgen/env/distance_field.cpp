@@ -8,6 +8,7 @@
 #include <chrono>
 #include <cmath>
 #include <limits>
+#include <cstdint>
 #include <mutex>
 
 #include "sheetgen/core/geometry.hpp"
@@ -44,6 +45,59 @@ struct DistanceField::Impl {
   openvdb::FloatGrid::Ptr dist;
   openvdb::Int32Grid::Ptr index;
   DistanceFieldStats stats;
+  // Flat open-addressing table from leaf origin to the raw value arrays of the
+  // distance and index leaves: one probe instead of a four-level tree descent
+  // per query (the descent's cache misses dominated the query time).
+  struct LeafSlot {
+    std::uint64_t key = kEmpty;
+    const float* dist = nullptr;
+    const openvdb::Int32* index = nullptr;
+  };
+  static constexpr std::uint64_t kEmpty = ~std::uint64_t(0);
+  std::vector<LeafSlot> leaf_table;
+  std::uint64_t leaf_mask = 0;
+
+  static std::uint64_t leaf_key(const openvdb::Coord& c) {
+    // 21 bits per axis of the leaf coordinate (c >> 3): +-2^20 leaves = +-8.4e6 voxels.
+    const auto pack = [](int v) { return static_cast<std::uint64_t>((v >> 3) + (1 << 20)) & 0x1FFFFF; };
+    return pack(c.x()) | (pack(c.y()) << 21) | (pack(c.z()) << 42);
+  }
+  static std::uint64_t hash(std::uint64_t k) {
+    k ^= k >> 33;
+    k *= 0xff51afd7ed558ccdULL;
+    k ^= k >> 33;
+    return k;
+  }
+  void build_leaf_table() {
+    const size_t n = dist->tree().leafCount();
+    size_t cap = 16;
+    while (cap < 2 * n) cap <<= 1;
+    leaf_table.assign(cap, LeafSlot{});
+    leaf_mask = cap - 1;
+    auto iacc = index->getConstAccessor();
+    for (auto it = dist->tree().cbeginLeaf(); it; ++it) {
+      const openvdb::Coord origin = it->origin();
+      LeafSlot slot;
+      slot.key = leaf_key(origin);
+      slot.dist = it->buffer().data();
+      const auto* ileaf = index->tree().probeConstLeaf(origin);
+      slot.index = ileaf ? ileaf->buffer().data() : nullptr;
+      for (std::uint64_t h = hash(slot.key) & leaf_mask;; h = (h + 1) & leaf_mask)
+        if (leaf_table[h].key == kEmpty) {
+          leaf_table[h] = slot;
+          break;
+        }
+    }
+  }
+  const LeafSlot* find_leaf(const openvdb::Coord& c) const {
+    if (leaf_table.empty()) return nullptr;
+    const std::uint64_t key = leaf_key(c);
+    for (std::uint64_t h = hash(key) & leaf_mask;; h = (h + 1) & leaf_mask) {
+      if (leaf_table[h].key == key) return &leaf_table[h];
+      if (leaf_table[h].key == kEmpty) return nullptr;
+    }
+  }
+
   // Faces around each vertex (CSR), for the closest-point descent.
   std::vector<int> vertex_face_start, vertex_faces;
 
@@ -132,14 +186,29 @@ struct DistanceField::Impl {
     const double fx = std::floor(x), fy = std::floor(y), fz = std::floor(z);
     const openvdb::Coord base(static_cast<int>(fx), static_cast<int>(fy), static_cast<int>(fz));
     const double tx = x - fx, ty = y - fy, tz = z - fz;
-    auto acc = dist->getConstAccessor();
     float v[8];
-    bool all_background = true;
-    for (int c = 0; c < 8; ++c) {
-      const openvdb::Coord ijk = base.offsetBy(c & 1, (c >> 1) & 1, (c >> 2) & 1);
-      v[c] = acc.getValue(ijk);
-      all_background = all_background && !acc.isValueOn(ijk);
+    // Fast path: the 8 corners lie in one 8^3 leaf (7 times in 8 per axis), one
+    // tree descent and direct reads. Corner c is base + (c&1, c>>1&1, c>>2&1);
+    // a leaf stores x-major, so the offsets are 64, 8 and 1.
+    const bool in_one_leaf = (base.x() & 7) != 7 && (base.y() & 7) != 7 && (base.z() & 7) != 7;
+    // Coordinates beyond the table's 21-bit range take the tree path.
+    constexpr int kTableLimit = (1 << 23) - 8;
+    const bool in_table = std::abs(base.x()) < kTableLimit && std::abs(base.y()) < kTableLimit && std::abs(base.z()) < kTableLimit;
+    const LeafSlot* leaf = in_one_leaf && in_table ? find_leaf(base) : nullptr;
+    const openvdb::Index offset = openvdb::FloatTree::LeafNodeType::coordToOffset(base);
+    if (leaf) {
+      for (int c = 0; c < 8; ++c) v[c] = leaf->dist[offset + (c & 1) * 64 + ((c >> 1) & 1) * 8 + ((c >> 2) & 1)];
+    } else if (in_one_leaf && in_table) {
+      // No leaf: an unsigned narrow-band grid has no active tiles, so this is background.
+      for (int c = 0; c < 8; ++c) v[c] = static_cast<float>(band);
+    } else {
+      auto acc = dist->getConstAccessor();
+      for (int c = 0; c < 8; ++c) v[c] = acc.getValue(base.offsetBy(c & 1, (c >> 1) & 1, (c >> 2) & 1));
     }
+    // Inactive voxels hold the background (the band width): all 8 there = outside the band.
+    const float background = static_cast<float>(band) * (1.0f - 1e-6f);
+    bool all_background = true;
+    for (int c = 0; c < 8; ++c) all_background = all_background && v[c] >= background;
     if (all_background) {
       if (static_cast<int>(mesh.triangles.size()) <= options.exact_fallback_triangles) return brute_force(p);
       out.distance = std::max(band, bounds.distance(p));
@@ -152,13 +221,17 @@ struct DistanceField::Impl {
     out.distance = interpolated;
     if (interpolated >= refine_below && !want_point) return out;
     // Near the surface: exact distance to the closest triangles of the 8 corners.
-    auto iacc = index->getConstAccessor();
     int faces[8];
     int n = 0;
-    for (int c = 0; c < 8; ++c) {
-      const int f = iacc.getValue(base.offsetBy(c & 1, (c >> 1) & 1, (c >> 2) & 1));
-      if (f < 0 || f >= static_cast<int>(mesh.triangles.size())) continue;
-      if (std::find(faces, faces + n, f) == faces + n) faces[n++] = f;
+    const int nf = static_cast<int>(mesh.triangles.size());
+    auto add_face = [&](int f) {
+      if (f >= 0 && f < nf && std::find(faces, faces + n, f) == faces + n) faces[n++] = f;
+    };
+    if (leaf && leaf->index) {
+      for (int c = 0; c < 8; ++c) add_face(leaf->index[offset + (c & 1) * 64 + ((c >> 1) & 1) * 8 + ((c >> 2) & 1)]);
+    } else {
+      auto iacc = index->getConstAccessor();
+      for (int c = 0; c < 8; ++c) add_face(iacc.getValue(base.offsetBy(c & 1, (c >> 1) & 1, (c >> 2) & 1)));
     }
     if (n == 0) return out;
     const ClosestPoint best = exact_over(faces, n, p);
@@ -192,6 +265,7 @@ DistanceField::DistanceField(const TriangleMesh& mesh, const DistanceFieldOption
     m.dist->setTransform(transform);
   }
   m.build_adjacency();
+  m.build_leaf_table();
   m.stats.active_voxels = m.dist->activeVoxelCount();
   m.stats.memory_bytes = m.dist->memUsage() + m.index->memUsage();
   m.stats.build_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();

@@ -1,0 +1,15 @@
+// The native module: thin bindings only (STYLE.md point 8). One bind_x() per area.
+#include <pybind11/pybind11.h>
+
+namespace py = pybind11;
+
+namespace sheetgen::python {
+void bind_problem(py::module_& m);
+void bind_environment(py::module_& m);
+}  // namespace sheetgen::python
+
+PYBIND11_MODULE(_sheetgen_native, m) {
+  m.doc() = "sheetgen native core: problem loading, environment queries (SI units: m, N, Pa, rad)";
+  sheetgen::python::bind_problem(m);
+  sheetgen::python::bind_environment(m);
+}
