@@ -219,7 +219,11 @@ struct DistanceField::Impl {
     const double c0 = c00 + (c10 - c00) * ty, c1 = c01 + (c11 - c01) * ty;
     const double interpolated = c0 + (c1 - c0) * tz;
     out.distance = interpolated;
-    if (interpolated >= refine_below && !want_point) return out;
+    // Trilinear interpolation is poor only where the surface (the kink of the
+    // unsigned distance) crosses the cell, i.e. when a corner is within about
+    // one voxel of it; elsewhere its error is of order h^2/(8 d).
+    const float min_corner = *std::min_element(v, v + 8);
+    if (min_corner >= refine_below && !want_point) return out;
     // Near the surface: exact distance to the closest triangles of the 8 corners.
     int faces[8];
     int n = 0;
@@ -250,7 +254,7 @@ DistanceField::DistanceField(const TriangleMesh& mesh, const DistanceFieldOption
   m.inv_h = 1.0 / m.h;
   const int band_voxels = std::max(options.band_voxels, 2);
   m.band = band_voxels * m.h;
-  m.refine_below = options.refine_below > 0 ? options.refine_below : 2.0 * m.h;
+  m.refine_below = options.refine_below > 0 ? options.refine_below : m.h;
   const auto transform = openvdb::math::Transform::createLinearTransform(m.h);
   m.index = openvdb::Int32Grid::create(static_cast<openvdb::Int32>(openvdb::util::INVALID_IDX));
   if (!mesh.triangles.empty()) {

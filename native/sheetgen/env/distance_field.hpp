@@ -11,8 +11,8 @@ namespace sheetgen {
 struct DistanceFieldOptions {
   double voxel_size = 1.6e-3;      // m, grid spacing h
   int band_voxels = 4;             // half-width of the narrow band, voxels
-  double refine_below = 0;         // m; interpolated values below this are refined exactly
-                                   // with the closest-triangle index; 0 = 2 voxels
+  double refine_below = 0;         // m; cells with a corner value below this are answered
+                                   // exactly from the closest-triangle index; 0 = 1 voxel
   int exact_fallback_triangles = 512;  // beyond the band, meshes with at most this many
                                        // triangles are answered exactly by brute force
 };
@@ -38,7 +38,8 @@ class DistanceField {
   DistanceField(const DistanceField&) = delete;
   DistanceField& operator=(const DistanceField&) = delete;
 
-  // Distance from p to the mesh, m. Exact below refine_below, trilinear inside
+  // Distance from p to the mesh, m. Exact in cells that reach within refine_below
+  // of the surface, trilinear elsewhere inside
   // the band, and beyond it exact (small meshes) or a lower bound: the larger
   // of the band width and the distance to the mesh's bounding box.
   double distance(const Vec3& p) const;
