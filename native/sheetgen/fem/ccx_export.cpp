@@ -1,0 +1,221 @@
+#include "sheetgen/fem/ccx_export.hpp"
+
+#include <chrono>
+#include <cstdio>
+#include <cstdlib>
+#include <fstream>
+#include <iomanip>
+#include <ostream>
+#include <sstream>
+#include <unordered_map>
+
+#include "sheetgen/fem/fem_error.hpp"
+
+namespace sheetgen {
+namespace {
+
+// Does the master of a rigid link carry elements? Then it cannot be the REF
+// NODE (ccx expands shell nodes), and a separate ref node is written.
+std::vector<char> element_nodes(const ShellModel& m) {
+  std::vector<char> used(m.nodes.size(), 0);
+  for (const auto& t : m.triangles)
+    for (int k : t) used[k] = 1;
+  return used;
+}
+
+}  // namespace
+
+CcxDeckMap write_ccx_deck(const ShellModel& m, std::ostream& out, const CcxExportOptions& options) {
+  validate_shell_model(m);
+  if (options.element_type != "S4" && options.element_type != "S4R")
+    throw FemError("ccx export", "element type must be S4 or S4R (got " + options.element_type + ")");
+  const std::vector<char> in_element = element_nodes(m);
+  CcxDeckMap map;
+  map.node_id.assign(m.nodes.size(), -1);
+  std::vector<char> written(m.nodes.size(), 0);
+  for (size_t i = 0; i < m.nodes.size(); ++i) written[i] = in_element[i];
+  for (const RigidLink& l : m.rigid_links) {
+    written[l.master] = 1;
+    for (int s : l.slaves) written[s] = 1;
+  }
+  int next = 0;
+  for (size_t i = 0; i < m.nodes.size(); ++i)
+    if (written[i]) map.node_id[i] = ++next;
+
+  out << std::setprecision(17);
+  out << "*HEADING\n" << options.heading << "\n** Units: m, N, Pa. Written by sheetgen (docs/fem.md).\n";
+  out << "*NODE, NSET=NALL\n";
+  for (size_t i = 0; i < m.nodes.size(); ++i)
+    if (written[i]) out << map.node_id[i] << ", " << m.nodes[i].x() << ", " << m.nodes[i].y() << ", " << m.nodes[i].z() << "\n";
+  // Edge midpoints (shared) and centroids.
+  std::unordered_map<long long, int> midpoint;
+  auto mid = [&](int a, int b) {
+    const long long key = static_cast<long long>(std::min(a, b)) * static_cast<long long>(m.nodes.size()) + std::max(a, b);
+    auto it = midpoint.find(key);
+    if (it != midpoint.end()) return it->second;
+    const Vec3 p = 0.5 * (m.nodes[a] + m.nodes[b]);
+    const int id = ++next;
+    out << id << ", " << p.x() << ", " << p.y() << ", " << p.z() << "\n";
+    midpoint.emplace(key, id);
+    return id;
+  };
+  std::vector<std::array<int, 4>> quads;
+  quads.reserve(3 * m.triangles.size());
+  for (const auto& t : m.triangles) {
+    const int m01 = mid(t[0], t[1]), m12 = mid(t[1], t[2]), m20 = mid(t[2], t[0]);
+    const Vec3 c = (m.nodes[t[0]] + m.nodes[t[1]] + m.nodes[t[2]]) / 3.0;
+    const int cid = ++next;
+    out << cid << ", " << c.x() << ", " << c.y() << ", " << c.z() << "\n";
+    // Counter-clockwise like the triangle, so every quad keeps its normal.
+    quads.push_back({map.node_id[t[0]], m01, cid, m20});
+    quads.push_back({map.node_id[t[1]], m12, cid, m01});
+    quads.push_back({map.node_id[t[2]], m20, cid, m12});
+  }
+  // Rigid-link reference and rotation nodes.
+  for (const RigidLink& l : m.rigid_links) {
+    const Vec3& p = m.nodes[l.master];
+    int ref = map.node_id[l.master];
+    if (in_element[l.master]) {
+      ref = ++next;
+      out << ref << ", " << p.x() << ", " << p.y() << ", " << p.z() << "\n";
+    }
+    const int rot = ++next;
+    out << rot << ", " << p.x() << ", " << p.y() << ", " << p.z() << "\n";
+    map.ref_node.push_back(ref);
+    map.rot_node.push_back(rot);
+  }
+  map.node_count = next;
+  out << "*ELEMENT, TYPE=" << options.element_type << ", ELSET=EALL\n";
+  int eid = 0;
+  for (const auto& q : quads) out << ++eid << ", " << q[0] << ", " << q[1] << ", " << q[2] << ", " << q[3] << "\n";
+  map.element_count = eid;
+  out << "*MATERIAL, NAME=SHEET\n*ELASTIC\n"
+      << m.material.youngs_modulus << ", " << m.material.poisson_ratio << "\n";
+  out << "*SHELL SECTION, ELSET=EALL, MATERIAL=SHEET\n" << m.material.thickness << "\n";
+  for (size_t l = 0; l < m.rigid_links.size(); ++l) {
+    const RigidLink& link = m.rigid_links[l];
+    out << "*NSET, NSET=RIGID" << l + 1 << "\n";
+    if (in_element[link.master]) out << map.node_id[link.master] << ",\n";
+    for (int s : link.slaves) out << map.node_id[s] << ",\n";
+    out << "*RIGID BODY, NSET=RIGID" << l + 1 << ", REF NODE=" << map.ref_node[l] << ", ROT NODE=" << map.rot_node[l]
+        << "\n";
+  }
+  // A DOF of an element-free master lives on its ref node (translations) or
+  // rot node (rotations, as translations 1-3).
+  std::vector<int> master_link(m.nodes.size(), -1);
+  for (size_t l = 0; l < m.rigid_links.size(); ++l)
+    if (!in_element[m.rigid_links[l].master]) master_link[m.rigid_links[l].master] = static_cast<int>(l);
+  auto dof_target = [&](int node, int dof) {
+    const int l = master_link[node];
+    if (l < 0) return std::make_pair(map.node_id[node], dof + 1);
+    return dof < 3 ? std::make_pair(map.ref_node[l], dof + 1) : std::make_pair(map.rot_node[l], dof - 2);
+  };
+  out << "*STEP\n*STATIC\n";
+  out << "*BOUNDARY\n";
+  for (const NodeSupport& s : m.supports)
+    for (int d = 0; d < 6; ++d)
+      if (s.fixed[d]) {
+        const auto [id, dof] = dof_target(s.node, d);
+        out << id << ", " << dof << ", " << dof << "\n";
+      }
+  out << "*CLOAD\n";
+  for (const NodalLoad& f : m.loads)
+    for (int d = 0; d < 6; ++d) {
+      const double v = d < 3 ? f.force(d) : f.moment(d - 3);
+      if (v == 0) continue;
+      const auto [id, dof] = dof_target(f.node, d);
+      out << id << ", " << dof << ", " << v << "\n";
+    }
+  out << "*NODE PRINT, NSET=NALL\nU\n*END STEP\n";
+  return map;
+}
+
+CcxDeckMap write_ccx_deck(const ShellModel& model, const std::string& path, const CcxExportOptions& options) {
+  std::ofstream f(path);
+  if (!f) throw FemError("ccx export", "cannot write " + path);
+  const CcxDeckMap map = write_ccx_deck(model, f, options);
+  f.close();
+  if (!f) throw FemError("ccx export", "writing " + path + " failed");
+  return map;
+}
+
+std::map<int, Vec3> read_ccx_displacements(const std::string& dat_path) {
+  std::ifstream f(dat_path);
+  if (!f) throw FemError("ccx results", "cannot read " + dat_path);
+  std::map<int, Vec3> block, last;
+  bool in_block = false, found = false;
+  std::string line;
+  while (std::getline(f, line)) {
+    if (line.find("displacements (vx,vy,vz)") != std::string::npos) {
+      in_block = true;
+      found = true;
+      block.clear();
+      continue;
+    }
+    if (!in_block) continue;
+    std::istringstream s(line);
+    int id;
+    double x, y, z;
+    if (s >> id >> x >> y >> z) {
+      block[id] = Vec3(x, y, z);
+    } else if (!block.empty() && line.find_first_not_of(" \t\r") != std::string::npos) {
+      in_block = false;  // the next block's header
+      last = block;
+    }
+  }
+  if (in_block) last = block;
+  if (!found || last.empty()) throw FemError("ccx results", dat_path + " holds no displacement block");
+  return last;
+}
+
+CcxSolution solve_with_ccx(const ShellModel& m, const std::string& work_dir, const std::string& job,
+                           const std::string& ccx, const CcxExportOptions& options) {
+  const std::string inp = work_dir + "/" + job + ".inp";
+  const CcxDeckMap map = write_ccx_deck(m, inp, options);
+  std::remove((work_dir + "/" + job + ".dat").c_str());
+  const std::string cmd = "cd '" + work_dir + "' && '" + ccx + "' -i '" + job + "' > '" + job + ".log' 2>&1";
+  const auto t0 = std::chrono::steady_clock::now();
+  const int rc = std::system(cmd.c_str());
+  CcxSolution sol;
+  sol.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  std::ifstream log(work_dir + "/" + job + ".log");
+  std::stringstream log_text;
+  log_text << log.rdbuf();
+  if (rc != 0 || log_text.str().find("*ERROR") != std::string::npos) {
+    std::string tail = log_text.str();
+    if (tail.size() > 400) tail = tail.substr(tail.size() - 400);
+    throw FemError("ccx", "`" + cmd + "` failed (status " + std::to_string(rc) + "): " + tail);
+  }
+  const std::map<int, Vec3> u = read_ccx_displacements(work_dir + "/" + job + ".dat");
+  auto at = [&u](int id) {
+    auto it = u.find(id);
+    return it == u.end() ? Vec3(Vec3::Zero()) : it->second;
+  };
+  sol.displacements.assign(m.nodes.size(), Vector6d::Zero());
+  for (size_t i = 0; i < m.nodes.size(); ++i)
+    if (map.node_id[i] > 0) sol.displacements[i].head<3>() = at(map.node_id[i]);
+  std::vector<char> has_rotation(m.nodes.size(), 0);
+  for (size_t l = 0; l < m.rigid_links.size(); ++l) {
+    const int master = m.rigid_links[l].master;
+    sol.displacements[master].head<3>() = at(map.ref_node[l]);
+    sol.displacements[master].tail<3>() = at(map.rot_node[l]);
+    has_rotation[master] = 1;
+  }
+  int load_node = m.load_node;
+  double best = -1;
+  for (const NodalLoad& f : m.loads) {
+    sol.compliance += f.force.dot(sol.displacements[f.node].head<3>());
+    if (f.moment.squaredNorm() > 0) {
+      if (has_rotation[f.node]) sol.compliance += f.moment.dot(sol.displacements[f.node].tail<3>());
+      else sol.compliance_complete = false;
+    }
+    if (m.load_node < 0 && sol.displacements[f.node].head<3>().norm() > best) {
+      best = sol.displacements[f.node].head<3>().norm();
+      load_node = f.node;
+    }
+  }
+  if (load_node >= 0) sol.load_deflection = sol.displacements[load_node].head<3>().norm();
+  return sol;
+}
+
+}  // namespace sheetgen

@@ -1,0 +1,311 @@
+#include "sheetgen/fem/plate_mesher.hpp"
+
+#include <algorithm>
+#include <array>
+#include <limits>
+#include <cmath>
+#include <cstdint>
+#include <sstream>
+#include <unordered_map>
+
+#include "sheetgen/fem/delaunay_2d.hpp"
+#include "sheetgen/fem/fem_error.hpp"
+
+namespace sheetgen {
+namespace {
+
+// A polygon's plane: origin, in-plane axes ex, ey, normal ez = ex x ey
+// (the right-hand normal of its vertex order).
+struct PlaneFrame {
+  Vec3 origin, ex, ey, ez;
+  Vec2 to2d(const Vec3& p) const { return Vec2((p - origin).dot(ex), (p - origin).dot(ey)); }
+  Vec3 to3d(const Vec2& q) const { return origin + q.x() * ex + q.y() * ey; }
+};
+
+std::string polygon_name(size_t k) { return "polygon " + std::to_string(k); }
+
+PlaneFrame polygon_frame(const std::vector<Vec3>& poly, size_t k, double tol) {
+  if (poly.size() < 3) throw FemError(polygon_name(k), "has fewer than 3 vertices");
+  for (const Vec3& p : poly)
+    if (!p.allFinite()) throw FemError(polygon_name(k), "has a non-finite vertex");
+  Vec3 normal = Vec3::Zero();  // Newell's vector area
+  size_t longest = 0;
+  double longest_len = -1;
+  for (size_t i = 0; i < poly.size(); ++i) {
+    const Vec3& a = poly[i];
+    const Vec3& b = poly[(i + 1) % poly.size()];
+    normal += a.cross(b);
+    const double len = (b - a).norm();
+    if (len > longest_len) {
+      longest_len = len;
+      longest = i;
+    }
+  }
+  const double area = 0.5 * normal.norm();
+  if (!(area > tol * longest_len)) throw FemError(polygon_name(k), "is degenerate (zero area)");
+  PlaneFrame f;
+  f.origin = poly[0];
+  f.ez = normal.normalized();
+  f.ex = (poly[(longest + 1) % poly.size()] - poly[longest]).normalized();
+  f.ex = (f.ex - f.ex.dot(f.ez) * f.ez).normalized();
+  f.ey = f.ez.cross(f.ex);
+  const double plane_tol = std::max(tol, 1e-9 * longest_len);
+  for (size_t i = 0; i < poly.size(); ++i) {
+    if (std::abs((poly[i] - f.origin).dot(f.ez)) > 10 * plane_tol)
+      throw FemError(polygon_name(k), "is not planar (vertex " + std::to_string(i) + " is off its plane)");
+    const Vec2 a = f.to2d(poly[i]), b = f.to2d(poly[(i + 1) % poly.size()]),
+               c = f.to2d(poly[(i + 2) % poly.size()]);
+    const double cross = (b - a).x() * (c - b).y() - (b - a).y() * (c - b).x();
+    if (cross < -plane_tol * longest_len)
+      throw FemError(polygon_name(k), "is not convex (at vertex " + std::to_string((i + 1) % poly.size()) + ")");
+  }
+  return f;
+}
+
+// Signed distance of q from the edge line (a, b) of a counter-clockwise 2-D
+// polygon: positive inside.
+double inside_distance(const Vec2& a, const Vec2& b, const Vec2& q) {
+  const Vec2 d = (b - a).normalized();
+  return d.x() * (q - a).y() - d.y() * (q - a).x();
+}
+
+double min_inside_distance(const std::vector<Vec2>& poly2, const Vec2& q) {
+  double m = std::numeric_limits<double>::infinity();
+  for (size_t i = 0; i < poly2.size(); ++i) {
+    const Vec2& a = poly2[i];
+    const Vec2& b = poly2[(i + 1) % poly2.size()];
+    if ((b - a).norm() > 0) m = std::min(m, inside_distance(a, b, q));
+  }
+  return m;
+}
+
+// Global node table with merging of points closer than tol.
+class NodeTable {
+ public:
+  NodeTable(std::vector<Vec3>& nodes, double tol) : nodes_(nodes), tol_(tol) {}
+  int insert(const Vec3& p) {
+    const std::array<std::int64_t, 3> c = cell(p);
+    for (int dx = -1; dx <= 1; ++dx)
+      for (int dy = -1; dy <= 1; ++dy)
+        for (int dz = -1; dz <= 1; ++dz) {
+          auto it = map_.find(key({c[0] + dx, c[1] + dy, c[2] + dz}));
+          if (it == map_.end()) continue;
+          for (int i : it->second)
+            if ((nodes_[i] - p).norm() <= tol_) return i;
+        }
+    nodes_.push_back(p);
+    const int id = static_cast<int>(nodes_.size()) - 1;
+    map_[key(c)].push_back(id);
+    return id;
+  }
+
+ private:
+  std::array<std::int64_t, 3> cell(const Vec3& p) const {
+    return {static_cast<std::int64_t>(std::floor(p.x() / tol_)), static_cast<std::int64_t>(std::floor(p.y() / tol_)),
+            static_cast<std::int64_t>(std::floor(p.z() / tol_))};
+  }
+  static std::int64_t key(const std::array<std::int64_t, 3>& c) {
+    return (c[0] * 73856093) ^ (c[1] * 19349663) ^ (c[2] * 83492791);
+  }
+  std::vector<Vec3>& nodes_;
+  double tol_;
+  std::unordered_map<std::int64_t, std::vector<int>> map_;
+};
+
+double polygon_min_width(const std::vector<Vec3>& poly) {
+  // Width of a convex polygon = min over edges of the farthest vertex from that edge's line.
+  double width = std::numeric_limits<double>::infinity();
+  for (size_t i = 0; i < poly.size(); ++i) {
+    const Vec3& a = poly[i];
+    const Vec3 d = poly[(i + 1) % poly.size()] - a;
+    if (d.norm() <= 0) continue;
+    double far = 0;
+    for (const Vec3& p : poly) far = std::max(far, (p - a).cross(d).norm() / d.norm());
+    width = std::min(width, far);
+  }
+  return width;
+}
+
+}  // namespace
+
+double default_element_size(const std::vector<std::vector<Vec3>>& polygons, double thickness) {
+  double width = std::numeric_limits<double>::infinity();
+  for (const auto& poly : polygons) width = std::min(width, polygon_min_width(poly));
+  const double h = width / 4.0;
+  return std::clamp(h, 2.0 * thickness, 0.020);
+}
+
+PlateMesh mesh_plates(const std::vector<std::vector<Vec3>>& polygons, const std::vector<std::vector<Vec3>>& fixed_points,
+                      const PlateMeshOptions& options) {
+  if (polygons.empty()) throw FemError("polygons", "no polygon to mesh");
+  if (!fixed_points.empty() && fixed_points.size() != polygons.size())
+    throw FemError("fixed_points", "must be empty or hold one list per polygon");
+  const double tol = options.tolerance;
+  if (!(tol > 0)) throw FemError("options.tolerance", "must be > 0 m");
+  PlateMesh out;
+  out.element_size = options.element_size > 0 ? options.element_size
+                                              : default_element_size(polygons, options.thickness);
+  const double h = out.element_size;
+  if (!std::isfinite(h) || !(h > 10 * tol)) throw FemError("options.element_size", "must be finite and > 10 tolerance");
+  NodeTable table(out.mesh.vertices, tol);
+  out.fixed_point_nodes.resize(polygons.size());
+
+  for (size_t k = 0; k < polygons.size(); ++k) {
+    const auto& poly = polygons[k];
+    const PlaneFrame f = polygon_frame(poly, k, tol);
+    const size_t nv = poly.size();
+    std::vector<Vec2> poly2(nv);
+    for (size_t i = 0; i < nv; ++i) poly2[i] = f.to2d(poly[i]);
+
+    // Boundary: each edge split at every vertex of any polygon lying on it.
+    std::vector<Vec3> pts3;      // the points to triangulate, 3-D
+    std::vector<int> fixed_3d;   // 1 for boundary and fixed points (not smoothed)
+    std::vector<Vec2> tangent;   // tie-breaking direction: along the edge for boundary points
+    for (size_t i = 0; i < nv; ++i) {
+      const Vec3& a = poly[i];
+      const Vec3& b = poly[(i + 1) % nv];
+      const double len = (b - a).norm();
+      if (len <= tol) continue;  // repeated vertex
+      std::vector<double> ts = {0.0, 1.0};
+      for (const auto& other : polygons)
+        for (const Vec3& q : other) {
+          const double t = (q - a).dot(b - a) / (len * len);
+          if (t * len <= tol || (1 - t) * len <= tol) continue;
+          if ((a + t * (b - a) - q).norm() <= tol) ts.push_back(t);
+        }
+      std::sort(ts.begin(), ts.end());
+      std::vector<double> uniq;
+      for (double t : ts)
+        if (uniq.empty() || (t - uniq.back()) * len > tol) uniq.push_back(t);
+      for (size_t s = 0; s + 1 < uniq.size(); ++s) {
+        const Vec3 P = a + uniq[s] * (b - a), Q = a + uniq[s + 1] * (b - a);
+        const int pieces = std::max(1, static_cast<int>(std::ceil((Q - P).norm() / h - 1e-6)));
+        for (int j = 0; j < pieces; ++j) {
+          pts3.push_back(P + (Q - P) * (static_cast<double>(j) / pieces));
+          fixed_3d.push_back(1);
+          tangent.push_back((poly2[(i + 1) % nv] - poly2[i]).normalized());
+        }
+      }
+    }
+    const size_t n_boundary = pts3.size();
+    // Fixed interior points (rivets).
+    std::vector<Vec2> fixed2;
+    if (!fixed_points.empty())
+      for (const Vec3& q : fixed_points[k]) {
+        if (!q.allFinite()) throw FemError(polygon_name(k), "fixed point is not finite");
+        const Vec2 q2 = f.to2d(q);
+        if (std::abs((q - f.origin).dot(f.ez)) > 1e3 * tol || min_inside_distance(poly2, q2) < -tol)
+          throw FemError(polygon_name(k), "a fixed (rivet) point lies outside the polygon");
+        fixed2.push_back(q2);
+        pts3.push_back(f.to3d(q2));
+        fixed_3d.push_back(1);
+        tangent.push_back(Vec2::Zero());
+      }
+    // Interior: equilateral lattice of spacing h aligned with the longest
+    // edge, kept at least h/2 from the boundary and from fixed points.
+    Vec2 lo = poly2[0], hi = poly2[0];
+    for (const Vec2& q : poly2) {
+      lo = lo.cwiseMin(q);
+      hi = hi.cwiseMax(q);
+    }
+    const double dy = h * std::sqrt(3.0) / 2.0;
+    const int rows = static_cast<int>(std::ceil((hi.y() - lo.y()) / dy)) + 1;
+    const int cols = static_cast<int>(std::ceil((hi.x() - lo.x()) / h)) + 2;
+    for (int r = 0; r < rows; ++r)
+      for (int c = 0; c < cols; ++c) {
+        const Vec2 q(lo.x() + (c + (r % 2 ? 0.5 : 0.0)) * h, lo.y() + r * dy);
+        if (min_inside_distance(poly2, q) < 0.5 * h) continue;
+        bool near_fixed = false;
+        for (const Vec2& fp : fixed2) near_fixed = near_fixed || (fp - q).norm() < 0.5 * h;
+        if (near_fixed) continue;
+        pts3.push_back(f.to3d(q));
+        fixed_3d.push_back(0);
+        tangent.push_back(Vec2::Zero());
+      }
+
+    std::vector<Vec2> pts2(pts3.size());
+    for (size_t i = 0; i < pts3.size(); ++i) pts2[i] = f.to2d(pts3[i]);
+    // Lattices and evenly split edges are full of cocircular quadruples; a
+    // deterministic perturbation of 1e-7 h (along the edge for boundary
+    // points, so they stay on it) makes the Delaunay choice clean. It only
+    // steers connectivity: nodes keep their exact positions.
+    std::uint64_t state = 0x9E3779B97F4A7C15ull + k;
+    auto jitter = [&state, h]() {
+      state = state * 6364136223846793005ull + 1442695040888963407ull;
+      return (static_cast<double>(state >> 11) / 9007199254740992.0 - 0.5) * 1e-7 * h;
+    };
+    auto triangulate = [&]() {
+      std::vector<Vec2> dt(pts2.size());
+      for (size_t i = 0; i < pts2.size(); ++i)
+        dt[i] = pts2[i] + (tangent[i].squaredNorm() > 0 ? Vec2(tangent[i] * jitter()) : Vec2(jitter(), jitter()));
+      return delaunay_triangulation(dt);
+    };
+    std::vector<std::array<int, 3>> tris = triangulate();
+    for (int pass = 0; pass < options.smoothing_passes; ++pass) {
+      std::vector<Vec2> sum(pts2.size(), Vec2::Zero());
+      std::vector<int> count(pts2.size(), 0);
+      for (const auto& t : tris)
+        for (int a = 0; a < 3; ++a)
+          for (int b = 0; b < 3; ++b)
+            if (a != b) {
+              sum[t[a]] += pts2[t[b]];
+              ++count[t[a]];
+            }
+      for (size_t i = 0; i < pts2.size(); ++i)
+        if (!fixed_3d[i] && count[i] > 0) pts2[i] = sum[i] / count[i];
+      tris = triangulate();
+    }
+    // Nodes: boundary and fixed points are merged globally; interior points are new.
+    std::vector<int> node(pts2.size());
+    for (size_t i = 0; i < pts2.size(); ++i)
+      node[i] = table.insert(i < n_boundary ? pts3[i] : f.to3d(pts2[i]));
+    for (size_t j = 0; j < fixed2.size(); ++j) out.fixed_point_nodes[k].push_back(node[n_boundary + j]);
+    for (const auto& t : tris) {
+      const double area2 = (pts2[t[1]] - pts2[t[0]]).x() * (pts2[t[2]] - pts2[t[0]]).y() -
+                           (pts2[t[1]] - pts2[t[0]]).y() * (pts2[t[2]] - pts2[t[0]]).x();
+      // Three points of one straight edge that round-off put a hair off the
+      // line make a zero-area sliver on the hull: drop it (its two short
+      // edges are the boundary we want).
+      if (area2 <= 1e-6 * h * h && static_cast<size_t>(std::max({t[0], t[1], t[2]})) < n_boundary) continue;
+      if (area2 <= 1e-10 * h * h) {
+        std::ostringstream s;
+        s << "the triangulation produced a sliver (area " << 0.5 * area2 << " m^2); polygon too thin for h = " << h
+          << " m?";
+        throw FemError(polygon_name(k), s.str());
+      }
+      out.mesh.triangles.push_back({node[t[0]], node[t[1]], node[t[2]]});
+      out.element_polygon.push_back(static_cast<int>(k));
+    }
+  }
+  return out;
+}
+
+std::vector<int> nodes_on_polygon(const TriangleMesh& mesh, const std::vector<Vec3>& polygon, double tolerance) {
+  const PlaneFrame f = polygon_frame(polygon, 0, tolerance);
+  std::vector<Vec2> poly2;
+  for (const Vec3& p : polygon) poly2.push_back(f.to2d(p));
+  std::vector<int> out;
+  for (size_t i = 0; i < mesh.vertices.size(); ++i) {
+    const Vec3& p = mesh.vertices[i];
+    if (std::abs((p - f.origin).dot(f.ez)) > tolerance) continue;
+    if (min_inside_distance(poly2, f.to2d(p)) >= -tolerance) out.push_back(static_cast<int>(i));
+  }
+  return out;
+}
+
+std::vector<int> nodes_on_segment(const TriangleMesh& mesh, const Vec3& a, const Vec3& b, double tolerance) {
+  std::vector<std::pair<double, int>> hits;
+  const Vec3 d = b - a;
+  const double len2 = d.squaredNorm();
+  for (size_t i = 0; i < mesh.vertices.size(); ++i) {
+    const Vec3& p = mesh.vertices[i];
+    const double t = len2 > 0 ? std::clamp((p - a).dot(d) / len2, 0.0, 1.0) : 0.0;
+    if ((a + t * d - p).norm() <= tolerance) hits.emplace_back(t, static_cast<int>(i));
+  }
+  std::sort(hits.begin(), hits.end());
+  std::vector<int> out;
+  for (const auto& hit : hits) out.push_back(hit.second);
+  return out;
+}
+
+}  // namespace sheetgen

@@ -1,0 +1,503 @@
+#include "sheetgen/fem/shell_model.hpp"
+
+#include <Eigen/CholmodSupport>
+#include <Eigen/SparseCholesky>
+#include <Eigen/SparseCore>
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <limits>
+#include <numeric>
+#include <sstream>
+#include <unordered_map>
+
+#include "sheetgen/fem/fem_error.hpp"
+
+namespace sheetgen {
+
+using SparseMatrix = Eigen::SparseMatrix<double, Eigen::ColMajor, int>;
+
+// ---------------------------------------------------------------- ShellModel
+
+int ShellModel::add_node(const Vec3& p) {
+  nodes.push_back(p);
+  return static_cast<int>(nodes.size()) - 1;
+}
+
+void ShellModel::clamp(int node) {
+  NodeSupport s;
+  s.node = node;
+  supports.push_back(s);
+}
+
+void ShellModel::add_load(int node, const Vec3& force, const Vec3& moment) {
+  loads.push_back(NodalLoad{node, force, moment});
+}
+
+void ShellModel::add_surface_traction(const Vec3& traction, const std::vector<int>& elements) {
+  std::vector<Vec3> share(nodes.size(), Vec3::Zero());
+  auto lump = [&](int e) {
+    const auto& t = triangles.at(static_cast<size_t>(e));
+    const double area = 0.5 * (nodes[t[1]] - nodes[t[0]]).cross(nodes[t[2]] - nodes[t[0]]).norm();
+    for (int k = 0; k < 3; ++k) share[t[k]] += traction * (area / 3.0);
+  };
+  if (elements.empty()) {
+    for (int e = 0; e < static_cast<int>(triangles.size()); ++e) lump(e);
+  } else {
+    for (int e : elements) lump(e);
+  }
+  for (int n = 0; n < static_cast<int>(nodes.size()); ++n)
+    if (share[n].squaredNorm() > 0) add_load(n, share[n]);
+}
+
+// ---------------------------------------------------------------- validation
+
+namespace {
+
+std::string str(double v) {
+  std::ostringstream s;
+  s << v;
+  return s.str();
+}
+
+struct UnionFind {
+  std::vector<int> parent;
+  explicit UnionFind(int n) : parent(n) { std::iota(parent.begin(), parent.end(), 0); }
+  int find(int a) {
+    while (parent[a] != a) a = parent[a] = parent[parent[a]];
+    return a;
+  }
+  void join(int a, int b) { parent[find(a)] = find(b); }
+};
+
+void check_node(const ShellModel& m, int node, const std::string& what) {
+  if (node < 0 || node >= static_cast<int>(m.nodes.size()))
+    throw FemError(what, "node index " + std::to_string(node) + " is out of range [0, " +
+                             std::to_string(m.nodes.size()) + ")");
+}
+
+}  // namespace
+
+void validate_shell_model(const ShellModel& m) {
+  const Material& mat = m.material;
+  if (!(std::isfinite(mat.thickness) && mat.thickness > 0))
+    throw FemError("material.thickness", "must be a finite number > 0 m (got " + str(mat.thickness) + ")");
+  if (!(std::isfinite(mat.youngs_modulus) && mat.youngs_modulus > 0))
+    throw FemError("material.youngs_modulus", "must be a finite number > 0 Pa (got " + str(mat.youngs_modulus) + ")");
+  if (!(std::isfinite(mat.poisson_ratio) && mat.poisson_ratio > -1.0 && mat.poisson_ratio < 0.5))
+    throw FemError("material.poisson_ratio", "must lie in (-1, 0.5) (got " + str(mat.poisson_ratio) + ")");
+  if (!(std::isfinite(mat.yield_strength) && mat.yield_strength > 0))
+    throw FemError("material.yield_strength", "must be a finite number > 0 Pa (got " + str(mat.yield_strength) + ")");
+  if (m.triangles.empty()) throw FemError("triangles", "the model has no elements");
+  const int n = static_cast<int>(m.nodes.size());
+  for (int i = 0; i < n; ++i)
+    if (!m.nodes[i].allFinite()) throw FemError("node " + std::to_string(i), "coordinate is not finite");
+  std::vector<char> in_element(n, 0), supported(n, 0);
+  for (size_t e = 0; e < m.triangles.size(); ++e) {
+    const auto& t = m.triangles[e];
+    for (int k = 0; k < 3; ++k) {
+      check_node(m, t[k], "triangle " + std::to_string(e));
+      in_element[t[k]] = 1;
+    }
+    if (t[0] == t[1] || t[1] == t[2] || t[0] == t[2])
+      throw FemError("triangle " + std::to_string(e), "repeats a node");
+  }
+  for (const NodeSupport& s : m.supports) {
+    check_node(m, s.node, "support");
+    if (std::any_of(s.fixed.begin(), s.fixed.end(), [](bool b) { return b; })) supported[s.node] = 1;
+  }
+  std::vector<int> slave_of(n, -1);
+  std::vector<char> in_link(n, 0);
+  for (size_t l = 0; l < m.rigid_links.size(); ++l) {
+    const RigidLink& link = m.rigid_links[l];
+    const std::string name = "rigid_links[" + std::to_string(l) + "]";
+    check_node(m, link.master, name + ".master");
+    if (link.slaves.empty()) throw FemError(name, "has no slave nodes");
+    in_link[link.master] = 1;
+    for (int s : link.slaves) {
+      check_node(m, s, name + ".slaves");
+      if (s == link.master) throw FemError(name, "node " + std::to_string(s) + " is its own master");
+      if (slave_of[s] >= 0)
+        throw FemError(name, "node " + std::to_string(s) + " is already a slave of rigid_links[" +
+                                 std::to_string(slave_of[s]) + "]");
+      if (supported[s])
+        throw FemError(name, "slave node " + std::to_string(s) +
+                                 " also has a support; support its master instead");
+      slave_of[s] = static_cast<int>(l);
+      in_link[s] = 1;
+    }
+  }
+  for (const RigidLink& link : m.rigid_links)
+    if (slave_of[link.master] >= 0)
+      throw FemError("rigid link master " + std::to_string(link.master),
+                     "is itself a slave of another link (chained links are not supported; merge them)");
+  for (size_t i = 0; i < m.loads.size(); ++i) {
+    const NodalLoad& f = m.loads[i];
+    check_node(m, f.node, "loads[" + std::to_string(i) + "]");
+    if (!f.force.allFinite() || !f.moment.allFinite())
+      throw FemError("loads[" + std::to_string(i) + "]", "force or moment is not finite");
+    if (!in_element[f.node] && !in_link[f.node])
+      throw FemError("loads[" + std::to_string(i) + "]",
+                     "acts on node " + std::to_string(f.node) + ", which no element or rigid link uses");
+  }
+  if (m.load_node >= 0) check_node(m, m.load_node, "load_node");
+  if (!std::any_of(supported.begin(), supported.end(), [](char c) { return c != 0; }))
+    throw FemError("supports", "the model has no supported node, so it is a free mechanism");
+
+  // Every connected patch (elements joined through shared nodes and rigid
+  // links) must reach a support; otherwise K is singular.
+  UnionFind uf(n);
+  for (const auto& t : m.triangles) {
+    uf.join(t[0], t[1]);
+    uf.join(t[1], t[2]);
+  }
+  for (const RigidLink& link : m.rigid_links)
+    for (int s : link.slaves) uf.join(s, link.master);
+  std::vector<char> root_supported(n, 0);
+  for (int i = 0; i < n; ++i)
+    if (supported[i]) root_supported[uf.find(i)] = 1;
+  for (size_t e = 0; e < m.triangles.size(); ++e) {
+    if (!root_supported[uf.find(m.triangles[e][0])]) {
+      const Vec3 c = (m.nodes[m.triangles[e][0]] + m.nodes[m.triangles[e][1]] + m.nodes[m.triangles[e][2]]) / 3.0;
+      std::ostringstream s;
+      s << "belongs to a patch connected to no support (a disconnected part; element centroid at " << c.x() << ", "
+        << c.y() << ", " << c.z() << " m)";
+      throw FemError("triangle " + std::to_string(e), s.str());
+    }
+  }
+}
+
+// ---------------------------------------------------------------- solver
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+double seconds_since(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
+
+// Full DOF (6 per node) -> linear combination of reduced DOFs: u = T u_hat.
+struct DofMap {
+  std::vector<int> start;  // 6 #N + 1, CSR offsets into index/coef
+  std::vector<int> index;  // reduced DOF
+  std::vector<double> coef;
+  int reduced = 0;
+};
+
+DofMap build_dof_map(const ShellModel& m) {
+  const int n = static_cast<int>(m.nodes.size());
+  std::vector<std::array<bool, 6>> fixed(n, std::array<bool, 6>{});
+  for (const NodeSupport& s : m.supports)
+    for (int d = 0; d < 6; ++d) fixed[s.node][d] = fixed[s.node][d] || s.fixed[d];
+  std::vector<char> active(n, 0);
+  for (const auto& t : m.triangles)
+    for (int k : t) active[k] = 1;
+  std::vector<int> slave_link(n, -1);
+  for (size_t l = 0; l < m.rigid_links.size(); ++l) {
+    active[m.rigid_links[l].master] = 1;
+    for (int s : m.rigid_links[l].slaves) slave_link[s] = static_cast<int>(l);
+  }
+  DofMap map;
+  std::vector<int> red(6 * static_cast<size_t>(n), -1);
+  for (int i = 0; i < n; ++i) {
+    if (!active[i] || slave_link[i] >= 0) continue;
+    for (int d = 0; d < 6; ++d)
+      if (!fixed[i][d]) red[6 * i + d] = map.reduced++;
+  }
+  map.start.assign(6 * static_cast<size_t>(n) + 1, 0);
+  map.index.reserve(6 * static_cast<size_t>(n));
+  map.coef.reserve(6 * static_cast<size_t>(n));
+  auto push = [&](int r, double c) {
+    if (r >= 0 && c != 0.0) {
+      map.index.push_back(r);
+      map.coef.push_back(c);
+    }
+  };
+  for (int i = 0; i < n; ++i) {
+    const int l = slave_link[i];
+    for (int d = 0; d < 6; ++d) {
+      if (l < 0) {
+        push(red[6 * i + d], 1.0);
+      } else {
+        const int mi = m.rigid_links[l].master;
+        const Vec3 r = m.nodes[i] - m.nodes[mi];
+        const int* rm = &red[6 * mi];
+        push(rm[d], 1.0);  // u_s = u_m + theta_m x r; theta_s = theta_m
+        if (d == 0) { push(rm[4], r.z()); push(rm[5], -r.y()); }
+        if (d == 1) { push(rm[5], r.x()); push(rm[3], -r.z()); }
+        if (d == 2) { push(rm[3], r.y()); push(rm[4], -r.x()); }
+      }
+      map.start[6 * i + d + 1] = static_cast<int>(map.index.size());
+    }
+  }
+  return map;
+}
+
+std::uint64_t pattern_hash(const SparseMatrix& K) {
+  std::uint64_t h = 1469598103934665603ull;  // FNV-1a over the index arrays
+  auto mix = [&h](std::uint64_t v) {
+    h ^= v;
+    h *= 1099511628211ull;
+  };
+  mix(static_cast<std::uint64_t>(K.rows()));
+  for (Eigen::Index j = 0; j <= K.cols(); ++j) mix(static_cast<std::uint64_t>(K.outerIndexPtr()[j]));
+  for (Eigen::Index k = 0; k < K.nonZeros(); ++k) mix(static_cast<std::uint64_t>(K.innerIndexPtr()[k]));
+  return h;
+}
+
+// Gives access to the CHOLMOD factor so the pivots can be checked for a
+// mechanism (CHOLMOD only fails on non-positive pivots, not on tiny ones).
+class CholmodLlt : public Eigen::CholmodSupernodalLLT<SparseMatrix, Eigen::Lower> {
+ public:
+  // Smallest L_jj^2 / K_jj over all columns (1 for a perfectly diagonal K).
+  double min_pivot_ratio(const Eigen::VectorXd& diag) const {
+    const cholmod_factor* L = this->m_cholmodFactor;
+    if (!L || !L->is_super) return 1.0;
+    const int* sup = static_cast<const int*>(L->super);
+    const int* pi = static_cast<const int*>(L->pi);
+    const int* px = static_cast<const int*>(L->px);
+    const int* perm = static_cast<const int*>(L->Perm);
+    const double* x = static_cast<const double*>(L->x);
+    double worst = std::numeric_limits<double>::infinity();
+    for (size_t s = 0; s < L->nsuper; ++s) {
+      const int k1 = sup[s], k2 = sup[s + 1];
+      const int nsrow = pi[s + 1] - pi[s];
+      for (int j = k1; j < k2; ++j) {
+        const double ljj = x[px[s] + (j - k1) + static_cast<size_t>(j - k1) * nsrow];
+        const double kjj = diag(perm ? perm[j] : j);
+        worst = std::min(worst, kjj > 0 ? ljj * ljj / kjj : 0.0);
+      }
+    }
+    return worst;
+  }
+};
+
+using EigenLdlt = Eigen::SimplicialLDLT<SparseMatrix, Eigen::Lower, Eigen::AMDOrdering<int>>;
+
+}  // namespace
+
+struct ShellSolver::Impl {
+  std::uint64_t hash = 0;
+  ShellSolverBackend backend = ShellSolverBackend::kEigenSimplicialLdlt;
+  bool analysed = false;
+  int analyses = 0;
+  CholmodLlt cholmod;
+  EigenLdlt ldlt;
+};
+
+ShellSolver::ShellSolver() : impl_(std::make_unique<Impl>()) {}
+ShellSolver::~ShellSolver() = default;
+ShellSolver::ShellSolver(ShellSolver&&) noexcept = default;
+ShellSolver& ShellSolver::operator=(ShellSolver&&) noexcept = default;
+int ShellSolver::symbolic_analyses() const { return impl_->analyses; }
+
+ShellResult ShellSolver::solve(const ShellModel& m, const ShellSolveOptions& options) {
+  validate_shell_model(m);
+  ShellResult res;
+  const int n_nodes = static_cast<int>(m.nodes.size());
+  const int n_elem = static_cast<int>(m.triangles.size());
+
+  // ---- assemble K_hat = T^T K T (lower triangle) and f_hat = T^T f.
+  auto t0 = Clock::now();
+  const DofMap map = build_dof_map(m);
+  const int N = map.reduced;
+  res.reduced_dofs = N;
+  if (N == 0) throw FemError("supports", "every DOF is fixed; there is nothing to solve");
+  std::vector<Eigen::Triplet<double, int>> triplets;
+  triplets.reserve(static_cast<size_t>(n_elem) * 171);  // 18*19/2 per element
+  for (int e = 0; e < n_elem; ++e) {
+    const auto& t = m.triangles[e];
+    const Matrix18d Ke = shell_element_stiffness({m.nodes[t[0]], m.nodes[t[1]], m.nodes[t[2]]}, m.material,
+                                                 options.element);
+    int beg[18], end[18];
+    for (int a = 0; a < 18; ++a) {
+      const int full = 6 * t[a / 6] + a % 6;
+      beg[a] = map.start[full];
+      end[a] = map.start[full + 1];
+    }
+    for (int a = 0; a < 18; ++a)
+      for (int pa = beg[a]; pa < end[a]; ++pa) {
+        const int ia = map.index[pa];
+        const double ca = map.coef[pa];
+        for (int b = 0; b < 18; ++b)
+          for (int pb = beg[b]; pb < end[b]; ++pb) {
+            const int ib = map.index[pb];
+            if (ib > ia) continue;  // lower triangle only
+            triplets.emplace_back(ia, ib, ca * map.coef[pb] * Ke(a, b));
+          }
+      }
+  }
+  SparseMatrix K(N, N);
+  K.setFromTriplets(triplets.begin(), triplets.end());
+  triplets.clear();
+  triplets.shrink_to_fit();
+  Eigen::VectorXd f = Eigen::VectorXd::Zero(N);
+  std::vector<Vector6d> f_full(n_nodes, Vector6d::Zero());
+  for (const NodalLoad& load : m.loads) {
+    f_full[load.node].head<3>() += load.force;
+    f_full[load.node].tail<3>() += load.moment;
+  }
+  for (int i = 0; i < n_nodes; ++i)
+    for (int d = 0; d < 6; ++d)
+      for (int p = map.start[6 * i + d]; p < map.start[6 * i + d + 1]; ++p)
+        f(map.index[p]) += map.coef[p] * f_full[i](d);
+  res.assemble_seconds = seconds_since(t0);
+
+  // ---- factorise, reusing the symbolic analysis while the pattern repeats.
+  t0 = Clock::now();
+  Impl& s = *impl_;
+  const std::uint64_t h = pattern_hash(K);
+  const bool reuse = s.analysed && s.hash == h && s.backend == options.backend;
+  res.pattern_reused = reuse;
+  const Eigen::VectorXd diag = K.diagonal();
+  double pivot_ratio = 1.0;
+  bool ok = true;
+  if (options.backend == ShellSolverBackend::kCholmodSupernodal) {
+    if (!reuse) s.cholmod.analyzePattern(K);
+    s.cholmod.factorize(K);
+    ok = s.cholmod.info() == Eigen::Success;
+    if (ok) pivot_ratio = s.cholmod.min_pivot_ratio(diag);
+  } else {
+    if (!reuse) s.ldlt.analyzePattern(K);
+    s.ldlt.factorize(K);
+    ok = s.ldlt.info() == Eigen::Success;
+    if (ok) {
+      const Eigen::VectorXd& D = s.ldlt.vectorD();
+      const auto& P = s.ldlt.permutationP().indices();
+      Eigen::VectorXd pdiag(N);
+      for (int i = 0; i < N; ++i) pdiag(P(i)) = diag(i);
+      pivot_ratio = std::numeric_limits<double>::infinity();
+      for (int j = 0; j < N; ++j) pivot_ratio = std::min(pivot_ratio, pdiag(j) > 0 ? D(j) / pdiag(j) : 0.0);
+    }
+  }
+  s.analysed = true;
+  s.hash = h;
+  s.backend = options.backend;
+  if (!reuse) ++s.analyses;
+  if (!ok || !(pivot_ratio > options.singular_pivot_ratio)) {
+    s.analysed = false;  // a failed factor leaves the solver in an unknown state
+    throw FemError("stiffness", "the stiffness matrix is singular (smallest pivot ratio " + str(pivot_ratio) +
+                                    "): the supports leave a rigid-body mode or a mechanism free");
+  }
+  res.factor_seconds = seconds_since(t0);
+
+  // ---- solve and expand u = T u_hat.
+  t0 = Clock::now();
+  const Eigen::VectorXd uh = options.backend == ShellSolverBackend::kCholmodSupernodal
+                                 ? Eigen::VectorXd(s.cholmod.solve(f))
+                                 : Eigen::VectorXd(s.ldlt.solve(f));
+  if (!uh.allFinite()) throw FemError("solution", "the solve produced non-finite displacements");
+  res.displacements.assign(n_nodes, Vector6d::Zero());
+  for (int i = 0; i < n_nodes; ++i)
+    for (int d = 0; d < 6; ++d) {
+      double v = 0;
+      for (int p = map.start[6 * i + d]; p < map.start[6 * i + d + 1]; ++p) v += map.coef[p] * uh(map.index[p]);
+      res.displacements[i](d) = v;
+    }
+  res.compliance = f.dot(uh);
+  if (m.load_node >= 0) {
+    res.load_node = m.load_node;
+  } else {
+    double best = -1;
+    for (const NodalLoad& load : m.loads) {
+      const double d = res.displacements[load.node].head<3>().norm();
+      if (d > best) {
+        best = d;
+        res.load_node = load.node;
+      }
+    }
+  }
+  if (res.load_node >= 0) res.load_deflection = res.displacements[res.load_node].head<3>().norm();
+  res.solve_seconds = seconds_since(t0);
+
+  // ---- stresses and the stress rule.
+  t0 = Clock::now();
+  res.von_mises_top.resize(n_elem);
+  res.von_mises_bottom.resize(n_elem);
+  res.stress_excluded.assign(n_elem, false);
+  std::vector<Vec3> centroid(n_elem);
+  std::vector<double> node_size(n_nodes, 0.0);  // longest incident edge, m
+  for (int e = 0; e < n_elem; ++e) {
+    const auto& t = m.triangles[e];
+    Vector18d ue;
+    for (int k = 0; k < 3; ++k) ue.segment<6>(6 * k) = res.displacements[t[k]];
+    const ShellStress st =
+        shell_element_stress({m.nodes[t[0]], m.nodes[t[1]], m.nodes[t[2]]}, m.material, ue, options.element);
+    res.von_mises_top[e] = st.von_mises_top;
+    res.von_mises_bottom[e] = st.von_mises_bottom;
+    centroid[e] = (m.nodes[t[0]] + m.nodes[t[1]] + m.nodes[t[2]]) / 3.0;
+    for (int k = 0; k < 3; ++k) {
+      const double len = (m.nodes[t[(k + 1) % 3]] - m.nodes[t[k]]).norm();
+      node_size[t[k]] = std::max(node_size[t[k]], len);
+      node_size[t[(k + 1) % 3]] = std::max(node_size[t[(k + 1) % 3]], len);
+    }
+  }
+  // Singular points: supported nodes and rigid-link nodes that carry elements.
+  std::vector<char> singular(n_nodes, 0);
+  for (const NodeSupport& sp : m.supports) singular[sp.node] = 1;
+  for (const RigidLink& link : m.rigid_links) {
+    singular[link.master] = 1;
+    for (int sl : link.slaves) singular[sl] = 1;
+  }
+  std::vector<int> points;
+  double rmax = 0;
+  const double base_radius = options.stress_exclusion_thicknesses * m.material.thickness;
+  for (int i = 0; i < n_nodes; ++i)
+    if (singular[i] && node_size[i] > 0) {
+      points.push_back(i);
+      rmax = std::max(rmax, base_radius + node_size[i]);
+    }
+  if (!points.empty() && rmax > 0) {
+    // Uniform hash grid of cell rmax: a centroid only needs its 27 neighbour cells.
+    auto key = [rmax](const Vec3& p, int dx, int dy, int dz) {
+      const auto c = [rmax](double v, int d) { return static_cast<std::int64_t>(std::floor(v / rmax)) + d; };
+      return (c(p.x(), dx) * 73856093) ^ (c(p.y(), dy) * 19349663) ^ (c(p.z(), dz) * 83492791);
+    };
+    std::unordered_map<std::int64_t, std::vector<int>> grid;
+    for (int i : points) grid[key(m.nodes[i], 0, 0, 0)].push_back(i);
+    for (int e = 0; e < n_elem; ++e) {
+      bool excluded = false;
+      for (int dx = -1; dx <= 1 && !excluded; ++dx)
+        for (int dy = -1; dy <= 1 && !excluded; ++dy)
+          for (int dz = -1; dz <= 1 && !excluded; ++dz) {
+            auto it = grid.find(key(centroid[e], dx, dy, dz));
+            if (it == grid.end()) continue;
+            for (int i : it->second) {
+              const double r = base_radius + node_size[i];
+              if ((centroid[e] - m.nodes[i]).squaredNorm() < r * r) {
+                excluded = true;
+                break;
+              }
+            }
+          }
+      res.stress_excluded[e] = excluded;
+    }
+  }
+  auto take_max = [&](bool honour_rule) {
+    res.max_von_mises = 0;
+    res.max_von_mises_element = -1;
+    for (int e = 0; e < n_elem; ++e) {
+      if (honour_rule && res.stress_excluded[e]) continue;
+      const double v = std::max(res.von_mises_top[e], res.von_mises_bottom[e]);
+      if (v > res.max_von_mises || res.max_von_mises_element < 0) {
+        res.max_von_mises = v;
+        res.max_von_mises_element = e;
+      }
+    }
+  };
+  take_max(true);
+  if (res.max_von_mises_element < 0) {
+    res.stress_rule_fell_back = true;
+    take_max(false);
+  }
+  res.margin_of_safety = res.max_von_mises > 0
+                             ? m.material.yield_strength / (options.safety_factor * res.max_von_mises) - 1.0
+                             : std::numeric_limits<double>::infinity();
+  res.stress_seconds = seconds_since(t0);
+  return res;
+}
+
+ShellResult solve_shell(const ShellModel& model, const ShellSolveOptions& options) {
+  ShellSolver solver;
+  return solver.solve(model, options);
+}
+
+}  // namespace sheetgen

@@ -1,0 +1,138 @@
+#pragma once
+// The bracket FEM model and its linear static solve (DESIGN.md "FEM",
+// docs/fem.md): flat-shell triangles (shell_element.hpp) on one conforming
+// mesh, supports, rigid links eliminated master-slave (u = T u_hat), nodal
+// loads; outputs compliance, load deflection, fibre von Mises stresses and the
+// margin of safety.
+//
+// Composition solves hundreds of candidates per load, so the solve is a
+// stateful ShellSolver that keeps the sparse symbolic factorisation and reuses
+// it while the stiffness sparsity pattern repeats; solve_shell() is the
+// one-off form.
+#include <Eigen/Core>
+#include <array>
+#include <cstdint>
+#include <functional>
+#include <memory>
+#include <vector>
+
+#include "sheetgen/core/problem.hpp"
+#include "sheetgen/core/triangle_mesh.hpp"
+#include "sheetgen/fem/shell_element.hpp"
+
+namespace sheetgen {
+
+using Vector6d = Eigen::Matrix<double, 6, 1>;
+
+enum ShellDof : int { kUx = 0, kUy = 1, kUz = 2, kRx = 3, kRy = 4, kRz = 5 };
+
+// Prescribed zero displacement of some DOFs of one node.
+struct NodeSupport {
+  int node = -1;
+  std::array<bool, 6> fixed{{true, true, true, true, true, true}};  // by ShellDof; default: clamped
+};
+
+// A rigid 6-DOF link: every slave follows the master rigidly,
+//   u_s = u_m + theta_m x (x_s - x_m),  theta_s = theta_m.
+// Used for the rigid load box (master = an extra node at the box centroid,
+// slaves = the base-tab nodes under it) and for self-rivets (a master node and
+// the node of the other sheet at the same rivet).
+struct RigidLink {
+  int master = -1;
+  std::vector<int> slaves;
+};
+
+struct NodalLoad {
+  int node = -1;
+  Vec3 force = Vec3::Zero();   // N, world frame
+  Vec3 moment = Vec3::Zero();  // N m, world frame
+};
+
+struct ShellModel {
+  std::vector<Vec3> nodes;                     // #N, m
+  std::vector<std::array<int, 3>> triangles;   // #E by 3 node indices; the vertex order sets the "top" side
+  Material material;                           // E, nu, thickness, Fty are used
+  std::vector<NodeSupport> supports;
+  std::vector<RigidLink> rigid_links;
+  std::vector<NodalLoad> loads;
+  // The node whose translation is reported as the load deflection (the load
+  // box master); -1: the loaded node with the largest translation.
+  int load_node = -1;
+
+  int add_node(const Vec3& p);  // returns its index
+  void clamp(int node);         // all six DOFs fixed
+  void add_load(int node, const Vec3& force, const Vec3& moment = Vec3::Zero());
+  // Lumps a uniform traction (Pa = N/m^2, world frame) over the given elements
+  // (all when empty) to their nodes, a third of each element's share per node.
+  // Exact for the resultant; the consistent and lumped vectors differ only in
+  // rotations, which DKT/OPT do not load under a constant traction.
+  void add_surface_traction(const Vec3& traction, const std::vector<int>& elements = {});
+};
+
+// Both are kept because which is faster depends on the BLAS: with Debian's
+// reference BLAS (this project's machines) Eigen's simplicial LDL^T beats
+// CHOLMOD's BLAS-bound supernodal LL^T at 5k-20k DOF (docs/fem.md
+// "Benchmarks"); with an optimised BLAS CHOLMOD should win.
+enum class ShellSolverBackend {
+  kEigenSimplicialLdlt,  // default
+  kCholmodSupernodal,
+};
+
+struct ShellSolveOptions {
+  ShellElementOptions element;
+  ShellSolverBackend backend = ShellSolverBackend::kEigenSimplicialLdlt;
+  double safety_factor = 1.5;  // -, SF in MS = Fty / (SF sigma_max) - 1 (DESIGN.md "Units")
+  // Stress rule: an element is left out of the maximum when its centroid is
+  // closer than (stress_exclusion_thicknesses * t + h_p) to a singular point p
+  // (a node with a support, or a node of a rigid link), where h_p is the
+  // longest edge of the elements at p. The radius tends to 2 t under
+  // refinement, so the maximum over the rest converges (docs/fem.md).
+  double stress_exclusion_thicknesses = 2.0;
+  // A pivot smaller than this fraction of its diagonal entry means the model
+  // is a mechanism (a rigid-body mode no support holds).
+  double singular_pivot_ratio = 1e-11;
+};
+
+struct ShellResult {
+  std::vector<Vector6d> displacements;   // #N, (ux, uy, uz m; rx, ry, rz rad), world frame
+  double compliance = 0;                 // J, f^T u
+  double load_deflection = 0;            // m, |translation| of the load node
+  int load_node = -1;                    // the node used for load_deflection
+  std::vector<double> von_mises_top;     // #E, Pa, centroid, z = +t/2
+  std::vector<double> von_mises_bottom;  // #E, Pa, centroid, z = -t/2
+  std::vector<bool> stress_excluded;     // #E, true where the stress rule leaves the element out
+  double max_von_mises = 0;              // Pa, max over the elements the rule keeps
+  int max_von_mises_element = -1;
+  bool stress_rule_fell_back = false;    // every element was excluded; the max is over all of them
+  double margin_of_safety = 0;           // -, Fty / (SF max_von_mises) - 1 (+inf when unstressed)
+  int reduced_dofs = 0;                  // unknowns after supports and rigid links
+  bool pattern_reused = false;           // the symbolic factorisation was reused
+  double assemble_seconds = 0, factor_seconds = 0, solve_seconds = 0, stress_seconds = 0;
+};
+
+// Keeps the symbolic factorisation between solves. Not thread-safe: use one
+// solver per thread.
+class ShellSolver {
+ public:
+  ShellSolver();
+  ~ShellSolver();
+  ShellSolver(ShellSolver&&) noexcept;
+  ShellSolver& operator=(ShellSolver&&) noexcept;
+
+  // Throws FemError on bad input or a singular (mechanism) model.
+  ShellResult solve(const ShellModel& model, const ShellSolveOptions& options = {});
+
+  int symbolic_analyses() const;  // how many times the pattern was analysed
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+// One-off solve (analyses the pattern every time).
+ShellResult solve_shell(const ShellModel& model, const ShellSolveOptions& options = {});
+
+// Checks the model without solving; throws FemError naming the first problem.
+void validate_shell_model(const ShellModel& model);
+
+}  // namespace sheetgen

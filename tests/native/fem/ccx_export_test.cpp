@@ -1,0 +1,100 @@
+// Our shell FEM against real CalculiX (ccx, S4 shells on the exported deck).
+// ccx is a required tool of this project (NOTES.md): if it is missing these
+// tests FAIL, they never skip.
+#include "sheetgen/fem/ccx_export.hpp"
+
+#include <gtest/gtest.h>
+#include <stdlib.h>
+
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <set>
+#include <sstream>
+
+#include "fem_brackets.hpp"
+#include "sheetgen/fem/fem_error.hpp"
+
+namespace sheetgen {
+namespace {
+
+std::string ccx_path() {
+  for (const char* p : {"/usr/bin/ccx", "/usr/local/bin/ccx"})
+    if (std::filesystem::exists(p)) return p;
+  return "";
+}
+
+std::string temp_dir(const std::string& name) {
+  std::string pattern = (std::filesystem::temp_directory_path() / ("sheetgen_" + name + "_XXXXXX")).string();
+  if (!mkdtemp(pattern.data())) return "";
+  return pattern;
+}
+
+// ref_compliance > 0 also checks ccx itself against a published value.
+void compare_with_ccx(const ShellModel& m, const std::string& name, double ref_compliance = 0) {
+  const std::string ccx = ccx_path();
+  ASSERT_FALSE(ccx.empty()) << "CalculiX (ccx, Debian package calculix-ccx) is required and was not found";
+  const std::string dir = temp_dir(name);
+  ASSERT_FALSE(dir.empty());
+  const ShellResult ours = solve_shell(m);
+  const CcxSolution ref = solve_with_ccx(m, dir, name, ccx);
+  ASSERT_TRUE(ref.compliance_complete);
+  std::printf("%s: compliance ours %.6g J, ccx %.6g J (%+.2f %%); load deflection ours %.6g mm, ccx %.6g mm "
+              "(%+.2f %%); ccx %.2f s\n",
+              name.c_str(), ours.compliance, ref.compliance, 100 * (ours.compliance / ref.compliance - 1),
+              ours.load_deflection * 1e3, ref.load_deflection * 1e3,
+              100 * (ours.load_deflection / ref.load_deflection - 1), ref.wall_seconds);
+  EXPECT_NEAR(ours.compliance, ref.compliance, 0.03 * ref.compliance);
+  EXPECT_NEAR(ours.load_deflection, ref.load_deflection, 0.03 * ref.load_deflection);
+  if (ref_compliance > 0) {
+    EXPECT_NEAR(ref.compliance, ref_compliance, 0.01 * ref_compliance);
+  }
+  std::filesystem::remove_all(dir);
+}
+
+TEST(CcxExport, DeckSplitsTrianglesIntoConformingQuads) {
+  const ShellModel m = test::three_tab_bracket_model(5e-3);
+  std::ostringstream deck;
+  const CcxDeckMap map = write_ccx_deck(m, deck);
+  // 3 quads per triangle; nodes = used model nodes + one per edge + one per
+  // triangle + (rot node) for the load box, whose master is already a node.
+  EXPECT_EQ(map.element_count, 3 * static_cast<int>(m.triangles.size()));
+  std::set<std::pair<int, int>> edges;
+  for (const auto& t : m.triangles)
+    for (int k = 0; k < 3; ++k) edges.insert({std::min(t[k], t[(k + 1) % 3]), std::max(t[k], t[(k + 1) % 3])});
+  EXPECT_EQ(map.node_count, static_cast<int>(m.nodes.size() + edges.size() + m.triangles.size()) + 1);
+  const std::string text = deck.str();
+  for (const char* key : {"*NODE", "*ELEMENT, TYPE=S4", "*MATERIAL", "*ELASTIC", "*SHELL SECTION", "*RIGID BODY",
+                          "*BOUNDARY", "*CLOAD", "*NODE PRINT"})
+    EXPECT_NE(text.find(key), std::string::npos) << key;
+}
+
+TEST(CcxExport, ReadsDatDisplacements) {
+  const std::string dir = temp_dir("dat");
+  ASSERT_FALSE(dir.empty());
+  const std::string path = dir + "/x.dat";
+  std::ofstream(path) << "\n displacements (vx,vy,vz) for set NALL and time  0.1000000E+01\n\n"
+                         "         1  1.000000E-03 -2.000000E-04  0.000000E+00\n"
+                         "         7  3.500000E-05  0.000000E+00 -1.250000E-02\n";
+  const auto u = read_ccx_displacements(path);
+  ASSERT_EQ(u.size(), 2u);
+  EXPECT_DOUBLE_EQ(u.at(1).x(), 1e-3);
+  EXPECT_DOUBLE_EQ(u.at(7).z(), -1.25e-2);
+  std::ofstream(path) << "nothing here\n";
+  EXPECT_THROW(read_ccx_displacements(path), FemError);
+  std::filesystem::remove_all(dir);
+}
+
+TEST(CcxExport, LBracketAgreesWithCalculix) {
+  // Also checks the deck itself: with 1 N, C = the load-weighted u_x of the
+  // top edge, so ccx must reproduce NOTES.md's 0.108231 mm as 1.08231e-4 J.
+  compare_with_ccx(test::l_bracket_model(2.5e-3), "l_bracket", 0.108231e-3);
+}
+
+TEST(CcxExport, ThreeTabBracketAgreesWithCalculix) {
+  compare_with_ccx(test::three_tab_bracket_model(2.5e-3), "three_tab");
+}
+
+}  // namespace
+}  // namespace sheetgen

@@ -1,0 +1,202 @@
+// Conformity and quality of the plate mesher, and the rivet layout rule.
+#include "sheetgen/fem/plate_mesher.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <map>
+
+#include "sheetgen/core/geometry.hpp"
+#include "sheetgen/fem/delaunay_2d.hpp"
+#include "sheetgen/fem/fem_error.hpp"
+#include "sheetgen/fem/rivet_layout.hpp"
+
+namespace sheetgen {
+namespace {
+
+using Poly = std::vector<Vec3>;
+
+// Undirected edge -> number of triangles using it, per polygon.
+std::map<std::pair<int, int>, std::vector<int>> edge_use(const PlateMesh& pm) {
+  std::map<std::pair<int, int>, std::vector<int>> use;
+  for (size_t f = 0; f < pm.mesh.triangles.size(); ++f)
+    for (int k = 0; k < 3; ++k) {
+      int a = pm.mesh.triangles[f][k], b = pm.mesh.triangles[f][(k + 1) % 3];
+      if (a > b) std::swap(a, b);
+      use[{a, b}].push_back(pm.element_polygon[f]);
+    }
+  return use;
+}
+
+bool on_segment(const Vec3& p, const Vec3& a, const Vec3& b) {
+  return (closest_point_on_segment(p, a, b) - p).norm() < 1e-9;
+}
+
+double min_angle_deg(const PlateMesh& pm) {
+  double worst = 180;
+  for (const auto& t : pm.mesh.triangles)
+    for (int k = 0; k < 3; ++k) {
+      const Vec3 u = pm.mesh.vertices[t[(k + 1) % 3]] - pm.mesh.vertices[t[k]];
+      const Vec3 v = pm.mesh.vertices[t[(k + 2) % 3]] - pm.mesh.vertices[t[k]];
+      worst = std::min(worst, std::acos(u.normalized().dot(v.normalized())) * 180 / M_PI);
+    }
+  return worst;
+}
+
+TEST(Delaunay2d, CollinearHullPointsStayOnTheHull) {
+  // A square sampled at 5 points per side plus its centre: the 16 boundary
+  // segments must all be edges, and the triangles must tile the square.
+  std::vector<Vec2> pts;
+  for (int i = 0; i < 4; ++i) pts.emplace_back(i / 4.0, 0);
+  for (int i = 0; i < 4; ++i) pts.emplace_back(1, i / 4.0);
+  for (int i = 0; i < 4; ++i) pts.emplace_back(1 - i / 4.0, 1);
+  for (int i = 0; i < 4; ++i) pts.emplace_back(0, 1 - i / 4.0);
+  pts.emplace_back(0.5, 0.5);
+  const auto tris = delaunay_triangulation(pts);
+  double area = 0;
+  for (const auto& t : tris) {
+    const Vec2 a = pts[t[0]], b = pts[t[1]], c = pts[t[2]];
+    const double A = 0.5 * ((b - a).x() * (c - a).y() - (b - a).y() * (c - a).x());
+    EXPECT_GT(A, 0);
+    area += A;
+  }
+  EXPECT_NEAR(area, 1.0, 1e-12);
+  EXPECT_EQ(tris.size(), 2 * pts.size() - 16 - 2);  // Euler: 2n - h - 2 with h = 16 hull points
+}
+
+TEST(PlateMesher, SingleRectangleIsAreaExactOrientedAndWellShaped) {
+  const Poly rect = {Vec3(0, 0, 0), Vec3(0.06, 0, 0), Vec3(0.06, 0.04, 0), Vec3(0, 0.04, 0)};
+  PlateMeshOptions opt;
+  opt.element_size = 0.005;
+  const PlateMesh pm = mesh_plates({rect}, {}, opt);
+  EXPECT_NEAR(pm.mesh.area(), 0.06 * 0.04, 1e-12);
+  for (size_t f = 0; f < pm.mesh.triangles.size(); ++f) EXPECT_GT(pm.mesh.face_normal(f).z(), 0.99);
+  for (const auto& [edge, polys] : edge_use(pm)) {
+    const Vec3 a = pm.mesh.vertices[edge.first], b = pm.mesh.vertices[edge.second];
+    if (polys.size() == 1) {  // a boundary edge lies on the rectangle's outline and is at most h long
+      const Vec3 m = 0.5 * (a + b);
+      EXPECT_TRUE(std::abs(m.x()) < 1e-12 || std::abs(m.x() - 0.06) < 1e-12 || std::abs(m.y()) < 1e-12 ||
+                  std::abs(m.y() - 0.04) < 1e-12);
+      EXPECT_LE((b - a).norm(), 0.005 + 1e-12);
+    } else {
+      EXPECT_EQ(polys.size(), 2u);
+    }
+  }
+  const double angle = min_angle_deg(pm);
+  std::printf("rectangle mesh: %zu triangles, min angle %.1f deg\n", pm.mesh.triangles.size(), angle);
+  EXPECT_GT(angle, 25.0);  // near-equilateral: an equilateral lattice with a smoothed boundary band
+}
+
+TEST(PlateMesher, TJunctionSharesEveryNodeOfTheSharedSegment) {
+  // Parent 60 x 40 mm in z = 0; child root edge = the sub-segment x in [20, 45]
+  // of the parent's edge y = 40, bent 90 deg up to z = 30; a second child on
+  // the full parent edge x = 60, bent down. Edge lengths are not multiples of h.
+  const Poly parent = {Vec3(0, 0, 0), Vec3(0.06, 0, 0), Vec3(0.06, 0.04, 0), Vec3(0, 0.04, 0)};
+  const Poly child = {Vec3(0.045, 0.04, 0), Vec3(0.02, 0.04, 0), Vec3(0.02, 0.04, 0.03), Vec3(0.045, 0.04, 0.03)};
+  const Poly child2 = {Vec3(0.06, 0, 0), Vec3(0.06, 0.04, 0), Vec3(0.06, 0.04, -0.025), Vec3(0.06, 0.0, -0.025)};
+  PlateMeshOptions opt;
+  opt.element_size = 0.0043;
+  const PlateMesh pm = mesh_plates({parent, child, child2}, {}, opt);
+  EXPECT_NEAR(pm.mesh.area(), 0.06 * 0.04 + 0.025 * 0.03 + 0.04 * 0.025, 1e-12);
+  int shared_edges = 0;
+  for (const auto& [edge, polys] : edge_use(pm)) {
+    const Vec3 a = pm.mesh.vertices[edge.first], b = pm.mesh.vertices[edge.second];
+    const bool on_root = on_segment(a, child[0], child[1]) && on_segment(b, child[0], child[1]);
+    const bool on_root2 = on_segment(a, child2[0], child2[1]) && on_segment(b, child2[0], child2[1]);
+    if (on_root || on_root2) {
+      // Conforming: each piece of a shared segment is an edge of one triangle of each side.
+      ASSERT_EQ(polys.size(), 2u);
+      EXPECT_NE(polys[0], polys[1]);
+      ++shared_edges;
+    } else {
+      EXPECT_LE(polys.size(), 2u);
+      if (polys.size() == 2) {
+        EXPECT_EQ(polys[0], polys[1]);
+      }
+    }
+  }
+  // 25 mm at h = 4.3 mm -> 6 pieces; 40 mm -> 10 pieces.
+  EXPECT_EQ(shared_edges, 6 + 10);
+  // No hanging node: every node on the parent's edge y = 40 is a vertex of a parent triangle.
+  std::vector<char> in_parent(pm.mesh.vertices.size(), 0);
+  for (size_t f = 0; f < pm.mesh.triangles.size(); ++f)
+    if (pm.element_polygon[f] == 0)
+      for (int v : pm.mesh.triangles[f]) in_parent[v] = 1;
+  for (int v : nodes_on_segment(pm.mesh, parent[2], parent[3])) EXPECT_TRUE(in_parent[v]);
+  // The split points (child corners) are nodes.
+  EXPECT_EQ(nodes_on_segment(pm.mesh, child[0], child[0], 1e-9).size(), 1u);
+  EXPECT_EQ(nodes_on_segment(pm.mesh, child[1], child[1], 1e-9).size(), 1u);
+}
+
+TEST(PlateMesher, SkewedTrapezoidTabsStayConformingAndWellShaped) {
+  // Grammar tabs are trapezoids with skew: a parent trapezoid and a skewed
+  // child on the middle of its far edge, bent 60 deg; default element size.
+  const Poly parent = {Vec3(0, 0, 0), Vec3(0.07, 0, 0), Vec3(0.06, 0.035, 0), Vec3(0.005, 0.035, 0)};
+  const double c = std::cos(M_PI / 3), sn = std::sin(M_PI / 3);
+  const Vec3 up(0, c, sn);  // child's in-plane direction away from the root
+  const Vec3 r0(0.045, 0.035, 0), r1(0.02, 0.035, 0);
+  const Poly child = {r0, r1, r1 + 0.03 * up + Vec3(0.008, 0, 0), r0 + 0.03 * up + Vec3(0.012, 0, 0)};
+  const PlateMesh pm = mesh_plates({parent, child});
+  EXPECT_NEAR(pm.element_size, default_element_size({parent, child}, 1.6e-3), 0);
+  EXPECT_NEAR(pm.mesh.area(), polygon_area(parent) + polygon_area(child), 1e-12);
+  int shared = 0;
+  for (const auto& [edge, polys] : edge_use(pm)) {
+    ASSERT_LE(polys.size(), 2u);
+    if (polys.size() == 2 && polys[0] != polys[1]) {
+      ++shared;
+      EXPECT_TRUE(on_segment(pm.mesh.vertices[edge.first], r0, r1) && on_segment(pm.mesh.vertices[edge.second], r0, r1));
+    }
+  }
+  EXPECT_EQ(shared, static_cast<int>(std::ceil(0.025 / pm.element_size - 1e-6)));
+  const double angle = min_angle_deg(pm);
+  std::printf("skewed tabs: %zu triangles, h = %.2f mm, min angle %.1f deg\n", pm.mesh.triangles.size(),
+              pm.element_size * 1e3, angle);
+  EXPECT_GT(angle, 20.0);
+}
+
+TEST(PlateMesher, DefaultElementSizeRule) {
+  // Narrowest width 24 mm -> 6 mm; a 4 mm wide strip clamps to 2 t = 3.2 mm; a 1 m plate to 20 mm.
+  const Poly a = {Vec3(0, 0, 0), Vec3(0.1, 0, 0), Vec3(0.1, 0.024, 0), Vec3(0, 0.024, 0)};
+  EXPECT_NEAR(default_element_size({a}, 1.6e-3), 0.006, 1e-15);
+  const Poly b = {Vec3(0, 0, 0), Vec3(0.1, 0, 0), Vec3(0.1, 0.004, 0), Vec3(0, 0.004, 0)};
+  EXPECT_NEAR(default_element_size({a, b}, 1.6e-3), 0.0032, 1e-15);
+  const Poly c = {Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(1, 1, 0), Vec3(0, 1, 0)};
+  EXPECT_NEAR(default_element_size({c}, 1.6e-3), 0.020, 1e-15);
+}
+
+TEST(PlateMesher, RejectsNonConvexAndNonPlanar) {
+  const Poly dart = {Vec3(0, 0, 0), Vec3(0.04, 0, 0), Vec3(0.01, 0.01, 0), Vec3(0, 0.04, 0)};
+  EXPECT_THROW(mesh_plates({dart}), FemError);
+  const Poly warped = {Vec3(0, 0, 0), Vec3(0.04, 0, 0), Vec3(0.04, 0.04, 0.005), Vec3(0, 0.04, 0)};
+  EXPECT_THROW(mesh_plates({warped}), FemError);
+}
+
+TEST(RivetLayout, DefaultsForSixteenHundredthsSheet) {
+  // t = 1.6 mm: d = 2 t = 3.2 mm rounded up to 1/32 in = 5/32 in = 3.96875 mm;
+  // edge distance 2 d = 7.9375 mm; pitch 6 d = 23.8125 mm. A 60 mm far edge
+  // leaves 60 - 2 e = 44.125 mm -> 2 rivets, 23.8125 mm apart, centred.
+  const Poly flange = {Vec3(0, 0, 0), Vec3(0.06, 0, 0), Vec3(0.06, 0.02, 0), Vec3(0, 0.02, 0)};
+  const RivetLayout r = layout_rivets(flange, 2);  // far edge: (0.06, 0.02) -> (0, 0.02)
+  EXPECT_NEAR(r.diameter, 5.0 / 32.0 * 0.0254, 1e-12);
+  EXPECT_NEAR(r.edge_distance, 2 * r.diameter, 1e-12);
+  EXPECT_NEAR(r.pitch, 6 * r.diameter, 1e-12);
+  ASSERT_EQ(r.points.size(), 2u);
+  for (const Vec3& p : r.points) EXPECT_NEAR(p.y(), 0.02 - r.edge_distance, 1e-12);
+  EXPECT_NEAR(std::abs(r.points[0].x() - r.points[1].x()), r.pitch, 1e-12);
+  EXPECT_NEAR(0.5 * (r.points[0].x() + r.points[1].x()), 0.03, 1e-12);
+  // Footprints: the centre and a ring of 6 points at radius d.
+  ASSERT_EQ(r.footprints.size(), 2u);
+  EXPECT_EQ(r.footprints[0].size(), 7u);
+  for (size_t k = 1; k < 7; ++k) EXPECT_NEAR((r.footprints[1][k] - r.points[1]).norm(), r.diameter, 1e-12);
+  EXPECT_EQ(r.all_points().size(), 14u);
+  // As fixed points they become mesh nodes.
+  const PlateMesh pm = mesh_plates({flange}, {r.points});
+  ASSERT_EQ(pm.fixed_point_nodes[0].size(), 2u);
+  for (int i = 0; i < 2; ++i) EXPECT_LT((pm.mesh.vertices[pm.fixed_point_nodes[0][i]] - r.points[i]).norm(), 1e-12);
+  // A flange narrower than two edge distances holds no rivet.
+  const Poly thin = {Vec3(0, 0, 0), Vec3(0.01, 0, 0), Vec3(0.01, 0.02, 0), Vec3(0, 0.02, 0)};
+  EXPECT_THROW(layout_rivets(thin, 2), FemError);
+}
+
+}  // namespace
+}  // namespace sheetgen
