@@ -1,0 +1,196 @@
+#include "sheetgen/part/bend_sequence.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <functional>
+#include <stdexcept>
+#include <unordered_set>
+
+#include "sheetgen/part/polygon_geometry.hpp"
+
+namespace sheetgen {
+
+namespace {
+
+double box_gap(const BoundingBox& a, const BoundingBox& b) {
+  return (a.min - b.max).cwiseMax(b.min - a.max).cwiseMax(Vec3::Zero()).norm();
+}
+
+class Simulator {
+ public:
+  Simulator(const Part& part, const SheetSpec& spec, const BendSequenceOptions& o)
+      : part_(part), o_(o), need_(spec.thickness + o.gap), n_(part.size()) {
+    ro_.angles.assign(n_, 0.0);
+    subtree_.assign(n_, std::vector<char>(n_, 0));
+    for (int i = n_ - 1; i >= 0; --i) {
+      subtree_[i][i] = 1;
+      for (int c : part.children(i))
+        for (int k = 0; k < n_; ++k)
+          if (subtree_[c][k]) subtree_[i][k] = 1;
+    }
+  }
+
+  // Collision among all non-adjacent pairs in the current state.
+  bool state_clear(BendCollision& hit) {
+    realise_into(part_, rp_, ro_);
+    for (int a = 0; a < n_; ++a)
+      for (int b = a + 1; b < n_; ++b)
+        if (!pair_clear(a, b, hit)) return false;
+    return true;
+  }
+
+  // Sweeps bend k from 0 to its angle with the current other angles.
+  bool sweep(int k, BendCollision& hit) {
+    const double target = part_.tabs[k].params.theta3;
+    const int steps = std::max(1, static_cast<int>(std::ceil(std::abs(target) / o_.max_step)));
+    for (int s = 1; s <= steps; ++s) {
+      ro_.angles[k] = target * s / steps;
+      realise_into(part_, rp_, ro_);
+      for (int a = 0; a < n_; ++a) {
+        if (!subtree_[k][a]) continue;
+        for (int b = 0; b < n_; ++b) {
+          if (subtree_[k][b]) continue;
+          if (!pair_clear(a, b, hit)) {
+            hit.bend_tab = k;
+            hit.fraction = static_cast<double>(s) / steps;
+            hit.angle = ro_.angles[k];
+            ro_.angles[k] = 0;
+            return false;
+          }
+        }
+      }
+    }
+    return true;
+  }
+
+  void set_angle(int k, double a) { ro_.angles[k] = a; }
+
+ private:
+  bool pair_clear(int a, int b, BendCollision& hit) const {
+    if (part_.tabs[a].parent == b || part_.tabs[b].parent == a) return true;
+    const RealisedTab& ta = rp_.tabs[a];
+    const RealisedTab& tb = rp_.tabs[b];
+    if (box_gap(ta.box, tb.box) >= need_) return true;
+    const double d = convex_polygon_distance(ta.corners, ta.normal, tb.corners, tb.normal, need_);
+    if (d >= need_) return true;
+    hit.tab_a = a;
+    hit.tab_b = b;
+    hit.distance = d;
+    return false;
+  }
+
+  const Part& part_;
+  BendSequenceOptions o_;
+  double need_;
+  int n_;
+  RealiseOptions ro_;
+  RealisedPart rp_;
+  std::vector<std::vector<char>> subtree_;
+};
+
+std::string describe(const BendCollision& c) {
+  char buf[256];
+  if (c.bend_tab < 0)
+    std::snprintf(buf, sizeof buf, "tabs %d and %d are %.3f mm apart in the flat sheet", c.tab_a, c.tab_b, c.distance * 1e3);
+  else
+    std::snprintf(buf, sizeof buf, "bending tab %d, at %.1f deg (%.0f %% of its bend) tab %d comes %.3f mm from tab %d",
+                  c.bend_tab, c.angle * 180.0 / M_PI, 100.0 * c.fraction, c.tab_a, c.distance * 1e3, c.tab_b);
+  return buf;
+}
+
+}  // namespace
+
+BendSequenceResult check_bend_order(const Part& part, const std::vector<int>& order, const SheetSpec& spec,
+                                    const BendSequenceOptions& o) {
+  const int n = part.size();
+  std::vector<char> seen(n, 0);
+  if (static_cast<int>(order.size()) != std::max(0, n - 1))
+    throw std::invalid_argument("check_bend_order: the order must list every non-base tab once");
+  for (int k : order) {
+    if (k <= 0 || k >= n || seen[k]) throw std::invalid_argument("check_bend_order: bad or repeated tab " + std::to_string(k));
+    seen[k] = 1;
+  }
+  BendSequenceResult r;
+  Simulator sim(part, spec, o);
+  BendCollision hit;
+  if (!sim.state_clear(hit)) {
+    r.status = ValidityReason::NoBendSequence;
+    r.collision = hit;
+    r.message = "the flat sheet already collides: " + describe(hit);
+    return r;
+  }
+  for (int k : order) {
+    ++r.sweeps;
+    if (!sim.sweep(k, hit)) {
+      r.status = ValidityReason::NoBendSequence;
+      r.collision = hit;
+      r.message = "bend order fails: " + describe(hit);
+      return r;
+    }
+    r.order.push_back(k);
+  }
+  return r;
+}
+
+BendSequenceResult plan_bend_sequence(const Part& part, const SheetSpec& spec, const BendSequenceOptions& o) {
+  const int n = part.size();
+  BendSequenceResult r;
+  Simulator sim(part, spec, o);
+  BendCollision hit;
+  if (!sim.state_clear(hit)) {
+    r.status = ValidityReason::NoBendSequence;
+    r.collision = hit;
+    r.message = "no bend sequence: " + describe(hit);
+    return r;
+  }
+  std::vector<int> candidates;
+  for (int i = 1; i < n; ++i) candidates.push_back(i);
+  std::stable_sort(candidates.begin(), candidates.end(), [&](int a, int b) { return part.depth(a) < part.depth(b); });
+  std::string mask(n, '0');
+  std::unordered_set<std::string> dead;
+  std::vector<int> order;
+  BendCollision deepest;
+  int deepest_level = -1;
+  std::function<bool()> dfs = [&]() -> bool {
+    if (static_cast<int>(order.size()) == n - 1) return true;
+    if (dead.count(mask)) return false;
+    for (int k : candidates) {
+      if (mask[k] == '1') continue;
+      if (r.sweeps >= o.max_sweeps) {
+        r.exhausted = true;
+        return false;
+      }
+      ++r.sweeps;
+      BendCollision h;
+      if (!sim.sweep(k, h)) {
+        if (static_cast<int>(order.size()) > deepest_level) {
+          deepest_level = static_cast<int>(order.size());
+          deepest = h;
+        }
+        continue;
+      }
+      sim.set_angle(k, part.tabs[k].params.theta3);
+      mask[k] = '1';
+      order.push_back(k);
+      if (dfs()) return true;
+      order.pop_back();
+      mask[k] = '0';
+      sim.set_angle(k, 0.0);
+      if (r.exhausted) return false;
+    }
+    dead.insert(mask);
+    return false;
+  };
+  if (dfs()) {
+    r.order = order;
+    return r;
+  }
+  r.status = ValidityReason::NoBendSequence;
+  r.collision = deepest;
+  r.message = std::string(r.exhausted ? "no bend sequence found within " : "no bend sequence exists (searched ") +
+              std::to_string(r.sweeps) + " sweeps" + (r.exhausted ? "" : ")") + "; deepest failure: " + describe(deepest);
+  return r;
+}
+
+}  // namespace sheetgen

@@ -1,0 +1,46 @@
+#pragma once
+// Exports of the manufacturing plan (DESIGN.md "Manufacturing plan",
+// docs/manufacturing.md): DXF R12 in millimetres for the laser, SVG of the same,
+// bend table CSV, bent mid-surface OBJ (metres), part JSON (the tabs[] of
+// sheetgen-result/1) and flat-pattern JSON. All writers return text; callers
+// choose where it goes (write_text_file for files).
+#include <nlohmann/json.hpp>
+#include <string>
+#include <vector>
+
+#include "sheetgen/part/flat_pattern.hpp"
+
+namespace sheetgen {
+
+struct DrawingOptions {
+  std::vector<int> bend_order;  // tab indices in bending order; empty = tab order. Numbers the bends 1..n
+  double text_height = 3e-3;    // m, annotation text height
+  double dash = 6e-3, gap = 3e-3;  // m, DASHED linetype pattern
+};
+
+// Bend number (1-based) of every non-base tab under `bend_order` (index = tab; 0 for the base).
+std::vector<int> bend_numbers(const FlatPattern& flat, const std::vector<int>& bend_order);
+
+// DXF R12 ($ACADVER AC1009), $INSUNITS 4 (mm). Layers: CUT (outline, a closed
+// POLYLINE with the relief notches in it), BEND_UP / BEND_DOWN (bend centre
+// lines, LINE with linetype DASHED), ANNOTATION (TEXT "B<n> UP|DOWN <angle>%%d").
+std::string flat_pattern_dxf(const FlatPattern& flat, const DrawingOptions& options = {});
+// SVG in millimetres (y up, flipped into SVG's y down), same layers as <g id=...>.
+std::string flat_pattern_svg(const FlatPattern& flat, const DrawingOptions& options = {});
+// Header "order,angle_deg,direction,inside_radius_mm,length_mm,tab"; one row per
+// bend in bending order; angle_deg is |theta3|, direction UP or DOWN.
+std::string bend_table_csv(const FlatPattern& flat, const std::vector<int>& bend_order = {});
+// Wavefront OBJ of the bent mid-surface in metres, one object "tab_<i>" per tab
+// (an n-gon face, counter-clockwise seen from the sheet's top side).
+std::string part_obj(const RealisedPart& realised);
+// tabs[] for sheetgen-result/1: [{index, parent, parent_edge, rivet_area,
+// parameters{d,w,l,theta1,theta2,theta3} (m, rad), corners [[x,y,z],...] (m),
+// normal}], the base with parent -1 and its outline corners.
+nlohmann::json part_json(const Part& part, const RealisedPart& realised);
+// flat_pattern for sheetgen-result/1: {outline [[x,y],...] (m), bends[...], reliefs[...], area_m2}.
+nlohmann::json flat_pattern_json(const FlatPattern& flat, const std::vector<int>& bend_order = {});
+
+// Writes text to a file; throws std::runtime_error naming the path on failure.
+void write_text_file(const std::string& path, const std::string& text);
+
+}  // namespace sheetgen

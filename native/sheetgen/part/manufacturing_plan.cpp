@@ -1,0 +1,39 @@
+#include "sheetgen/part/manufacturing_plan.hpp"
+
+#include <filesystem>
+#include <stdexcept>
+
+namespace sheetgen {
+
+ManufacturingPlan plan_manufacturing(const Part& part, const SheetSpec& spec, const ManufacturingPlanOptions& o) {
+  ManufacturingPlan plan;
+  plan.flat = unfold(part, spec, o.flat);
+  plan.flat_report = check_flat_pattern(plan.flat, spec, o.validity);
+  if (!plan.flat_report.valid()) {
+    plan.status = plan.flat_report.first_reason();
+    plan.message = plan.flat_report.summary();
+    if (!o.plan_bends_when_flat_fails) return plan;
+  }
+  plan.sequence = plan_bend_sequence(part, spec, o.bends);
+  if (!plan.sequence.ok() && plan.ok()) {
+    plan.status = plan.sequence.status;
+    plan.message = plan.sequence.message;
+  }
+  return plan;
+}
+
+void write_manufacturing_files(const std::string& dir, const RealisedPart& realised, const ManufacturingPlan& plan,
+                               const DrawingOptions& drawing) {
+  std::error_code ec;
+  std::filesystem::create_directories(dir, ec);
+  if (ec) throw std::runtime_error("cannot create directory " + dir + ": " + ec.message());
+  DrawingOptions d = drawing;
+  if (d.bend_order.empty() && plan.sequence.ok()) d.bend_order = plan.sequence.order;
+  const std::filesystem::path p(dir);
+  write_text_file((p / "flat.dxf").string(), flat_pattern_dxf(plan.flat, d));
+  write_text_file((p / "flat.svg").string(), flat_pattern_svg(plan.flat, d));
+  write_text_file((p / "bends.csv").string(), bend_table_csv(plan.flat, d.bend_order));
+  write_text_file((p / "part.obj").string(), part_obj(realised));
+}
+
+}  // namespace sheetgen
