@@ -2,12 +2,22 @@
 #include <CLI/CLI.hpp>
 
 #include <chrono>
+#include <cerrno>
 #include <cstdio>
+#include <cstring>
 #include <iostream>
 
 #include "sheetgen/core/input_error.hpp"
 #include "sheetgen/core/problem.hpp"
 #include "sheetgen/env/environment.hpp"
+#include "sheetgen/fem/ccx_export.hpp"
+#include "sheetgen/fem/fem_error.hpp"
+#include "sheetgen/structure/part_model.hpp"
+
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <sstream>
 
 namespace {
 
@@ -74,6 +84,61 @@ void print_queries(const sheetgen::Problem& p, const sheetgen::EnvironmentOption
   }
 }
 
+// `sheetgen export-ccx RESULT.json --load NAME --out DECK.inp`: the FEM model of
+// one load's part as a CalculiX deck. result.json names its problem file
+// ("problem", relative to result.json), which supplies the load box and material.
+int export_ccx(const std::string& result_path, const std::string& load_name, const std::string& out_path) {
+  namespace fs = std::filesystem;
+  std::ifstream in(fs::u8path(result_path), std::ios::binary);
+  if (!in) throw sheetgen::InputError(result_path, "", "cannot be opened");
+  std::stringstream ss;
+  ss << in.rdbuf();
+  nlohmann::json doc;
+  try {
+    doc = nlohmann::json::parse(ss.str());
+  } catch (const nlohmann::json::parse_error& e) {
+    throw sheetgen::InputError(result_path, "", std::string("is not valid JSON (") + e.what() + ")");
+  }
+  if (!doc.is_object() || doc.value("format", "") != "sheetgen-result/1")
+    throw sheetgen::InputError(result_path, "format", "expected \"sheetgen-result/1\"");
+  if (!doc.contains("problem") || !doc["problem"].is_string())
+    throw sheetgen::InputError(result_path, "problem", "required field is missing (the problem file this result solves)");
+  fs::path problem_path = fs::u8path(doc["problem"].get<std::string>());
+  if (problem_path.is_relative()) problem_path = fs::u8path(result_path).parent_path() / problem_path;
+  const sheetgen::Problem problem = sheetgen::load_problem(problem_path.u8string());
+  int load_index = -1;
+  for (size_t i = 0; i < problem.loads.size(); ++i)
+    if (problem.loads[i].name == load_name) load_index = static_cast<int>(i);
+  if (load_index < 0) throw sheetgen::InputError(result_path, "--load", "the problem has no load named '" + load_name + "'");
+  const nlohmann::json* part = nullptr;
+  if (doc.contains("parts") && doc["parts"].is_array())
+    for (const auto& pj : doc["parts"])
+      if (pj.is_object() && pj.value("load", "") == load_name) part = &pj;
+  if (!part) throw sheetgen::InputError(result_path, "parts", "no part for load '" + load_name + "'");
+  if (part->value("status", "ok") != "ok" || !part->contains("tabs"))
+    throw sheetgen::InputError(result_path, "parts[load=" + load_name + "]", "has no valid part to export");
+  const sheetgen::PlateGeometry geometry = sheetgen::plate_geometry_from_json(part->dump(), result_path);
+  const sheetgen::PartModel model = sheetgen::build_part_model(problem, load_index, geometry);
+  // Write beside the target and rename: a failed run leaves no half-written deck.
+  const fs::path out = fs::u8path(out_path);
+  const fs::path tmp = out.parent_path() / (out.filename().u8string() + ".tmp");
+  {
+    std::ofstream deck(tmp, std::ios::binary);
+    if (!deck) throw sheetgen::InputError(out_path, "--out", "cannot be written (" + std::string(std::strerror(errno)) + ")");
+    const auto map = sheetgen::write_ccx_deck(model.model, deck);
+    deck.flush();
+    if (!deck) {
+      std::error_code ec;
+      fs::remove(tmp, ec);
+      throw sheetgen::InputError(out_path, "--out", "write failed (disk full?)");
+    }
+    std::printf("wrote %s: %d nodes, %d S4 elements, %zu rivets clamped, load at node %d\n", out_path.c_str(),
+                map.node_count, map.element_count, model.rivets.size(), map.ref_node.empty() ? -1 : map.ref_node.back());
+  }
+  fs::rename(tmp, out);
+  return 0;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -87,6 +152,12 @@ int main(int argc, char** argv) {
   check->add_option("problem", check_path, "problem JSON (sheetgen-problem/1)")->required();
   check->add_flag("--env", check_env, "also build the environment (clearance field, rays) and print queries");
   check->add_option("--voxel-mm", voxel_mm, "clearance field voxel size in mm (default: automatic)");
+
+  std::string ccx_result, ccx_load, ccx_out;
+  auto* ccx = app.add_subcommand("export-ccx", "write one load's part as a CalculiX input deck");
+  ccx->add_option("result", ccx_result, "result JSON (sheetgen-result/1)")->required();
+  ccx->add_option("--load", ccx_load, "load name")->required();
+  ccx->add_option("--out", ccx_out, "deck to write (.inp)")->required();
 
   try {
     app.parse(argc, argv);
@@ -104,8 +175,13 @@ int main(int argc, char** argv) {
         print_queries(p, options);
       }
       std::printf("ok\n");
+    } else if (*ccx) {
+      return export_ccx(ccx_result, ccx_load, ccx_out);
     }
   } catch (const sheetgen::InputError& e) {
+    std::fprintf(stderr, "sheetgen: %s\n", e.what());
+    return 1;
+  } catch (const sheetgen::FemError& e) {
     std::fprintf(stderr, "sheetgen: %s\n", e.what());
     return 1;
   } catch (const std::exception& e) {

@@ -42,7 +42,9 @@ CcxDeckMap write_ccx_deck(const ShellModel& m, std::ostream& out, const CcxExpor
   for (size_t i = 0; i < m.nodes.size(); ++i)
     if (written[i]) map.node_id[i] = ++next;
 
-  out << std::setprecision(17);
+  // CalculiX reads a number from at most 20 characters: 13 significant digits
+  // keep "-1.234567890123E-05" (19) inside that; more digits fail as "error reading *NODE".
+  out << std::setprecision(13);
   out << "*HEADING\n" << options.heading << "\n** Units: m, N, Pa. Written by sheetgen (docs/fem.md).\n";
   out << "*NODE, NSET=NALL\n";
   for (size_t i = 0; i < m.nodes.size(); ++i)

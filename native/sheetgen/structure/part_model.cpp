@@ -1,0 +1,150 @@
+#include "sheetgen/structure/part_model.hpp"
+
+#include <chrono>
+#include <cmath>
+#include <nlohmann/json.hpp>
+
+#include "sheetgen/core/input_error.hpp"
+#include "sheetgen/core/json_reader.hpp"
+#include "sheetgen/fem/fem_error.hpp"
+#include "sheetgen/fem/rivet_layout.hpp"
+
+namespace sheetgen {
+
+PlateGeometry plate_geometry(const Part& part, const RealisedPart& realised) {
+  PlateGeometry g;
+  for (int i = 0; i < part.size(); ++i) {
+    g.polygons.push_back(realised.tabs[i].corners);
+    g.rivet_area.push_back(part.tabs[i].rivet_area);
+    g.rivet_edge.push_back(i == 0 ? 0 : kFarEdge);
+  }
+  return g;
+}
+
+PartModel build_part_model(const Problem& problem, int load_index, const PlateGeometry& geometry, const PartModelOptions& options) {
+  if (load_index < 0 || load_index >= static_cast<int>(problem.loads.size()))
+    throw FemError("load", "index " + std::to_string(load_index) + " is out of range");
+  const double t = problem.material.thickness;
+  if (!(t > 0)) throw FemError("material.thickness", "must be > 0 (got " + std::to_string(t) + " m)");
+  if (geometry.polygons.empty()) throw FemError("part", "has no tabs");
+  const Load& load = problem.loads[load_index];
+  const Manufacturing& mf = problem.manufacturing;
+
+  PartModel pm;
+  // Rivets on every flange, as fixed points so each becomes a node (with its footprint ring).
+  std::vector<std::vector<Vec3>> fixed(geometry.polygons.size());
+  RivetLayoutOptions ro;
+  ro.thickness = t;
+  ro.diameter = mf.rivet_diameter;
+  ro.edge_distance = mf.rivet_edge_distance;
+  ro.pitch = mf.rivet_pitch;
+  std::vector<RivetLayout> layouts(geometry.polygons.size());
+  bool any_flange = false;
+  for (size_t k = 0; k < geometry.polygons.size(); ++k) {
+    if (geometry.rivet_area[k] < 0) continue;
+    any_flange = true;
+    layouts[k] = layout_rivets(geometry.polygons[k], geometry.rivet_edge[k], ro);
+    fixed[k] = layouts[k].all_points();
+  }
+  if (!any_flange)
+    throw FemError("part", "has no rivet flange: nothing holds it to the structure (a mechanism)");
+  for (const auto& tie : options.self_rivets) {
+    fixed[tie.polygon_a].push_back(tie.point_a);
+    fixed[tie.polygon_b].push_back(tie.point_b);
+  }
+
+  PlateMeshOptions mo;
+  mo.thickness = t;
+  mo.element_size = options.element_size;
+  pm.mesh = mesh_plates(geometry.polygons, fixed, mo);
+
+  ShellModel& m = pm.model;
+  m.nodes = pm.mesh.mesh.vertices;
+  m.triangles = pm.mesh.mesh.triangles;
+  m.material = problem.material;
+
+  // Clamp every rivet's footprint (centre + ring).
+  for (size_t k = 0; k < geometry.polygons.size(); ++k) {
+    if (geometry.rivet_area[k] < 0) continue;
+    const auto& nodes = pm.mesh.fixed_point_nodes[k];
+    for (size_t r = 0, j = 0; r < layouts[k].footprints.size(); ++r) {
+      pm.rivets.push_back(layouts[k].points[r]);
+      pm.rivet_polygon.push_back(static_cast<int>(k));
+      for (size_t q = 0; q < layouts[k].footprints[r].size(); ++q, ++j) m.clamp(nodes[j]);
+    }
+  }
+
+  // Self-rivets: rigid ties between the two sheets' nodes.
+  // Tie points were appended after the rivet points, in tie order, per polygon.
+  std::vector<size_t> next(geometry.polygons.size());
+  for (size_t k = 0; k < geometry.polygons.size(); ++k)
+    next[k] = geometry.rivet_area[k] >= 0 ? layouts[k].all_points().size() : 0;
+  for (const auto& tie : options.self_rivets) {
+    const int a = pm.mesh.fixed_point_nodes[tie.polygon_a][next[tie.polygon_a]++];
+    const int b = pm.mesh.fixed_point_nodes[tie.polygon_b][next[tie.polygon_b]++];
+    m.rigid_links.push_back(RigidLink{a, {b}});
+  }
+
+  // The load box: rigid, bonded to the base-tab nodes under it (DESIGN.md).
+  const auto bottom = load.bottom_face();
+  const Vec3 down = load.rotation * Vec3(0, 0, -1);
+  std::vector<Vec3> footprint;
+  for (const Vec3& c : bottom) footprint.push_back(c + 0.5 * t * down);
+  const std::vector<int> bonded = nodes_on_polygon(pm.mesh.mesh, footprint, 1e-6 + 1e-6 * t);
+  if (bonded.empty())
+    throw FemError("load '" + load.name + "'", "no base-tab node lies under the load box: the part is not attached to its load");
+  pm.load_node = m.add_node(load.center);
+  m.rigid_links.push_back(RigidLink{pm.load_node, bonded});
+  m.add_load(pm.load_node, load.force, load.moment);
+  m.load_node = pm.load_node;
+  return pm;
+}
+
+StructuralResult analyse_part(const Problem& problem, int load_index, const PlateGeometry& geometry,
+                              const PartModelOptions& options, ShellSolver* solver) {
+  const auto start = std::chrono::steady_clock::now();
+  const PartModel pm = build_part_model(problem, load_index, geometry, options);
+  ShellSolveOptions so;
+  so.safety_factor = problem.requirements.safety_factor;
+  const ShellResult r = solver ? solver->solve(pm.model, so) : solve_shell(pm.model, so);
+  StructuralResult s;
+  s.compliance = r.compliance;
+  s.deflection = r.load_deflection;
+  s.max_von_mises = r.max_von_mises;
+  s.margin_of_safety = r.margin_of_safety;
+  s.compliance_limit = problem.requirements.compliance_limit(problem.loads[load_index].force.norm());
+  s.stiff_enough = s.compliance <= s.compliance_limit;
+  s.strong_enough = s.margin_of_safety >= problem.requirements.min_margin_of_safety;
+  s.elements = static_cast<int>(pm.model.triangles.size());
+  s.dofs = r.reduced_dofs;
+  s.rivets = static_cast<int>(pm.rivets.size());
+  s.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return s;
+}
+
+PlateGeometry plate_geometry_from_json(const std::string& text, const std::string& source) {
+  nlohmann::json doc;
+  try {
+    doc = nlohmann::json::parse(text);
+  } catch (const nlohmann::json::parse_error& e) {
+    throw InputError(source, "", std::string("is not valid JSON (") + e.what() + ")");
+  }
+  // Either a part object holding "tabs" (a result's parts[k]) or the bare array.
+  const nlohmann::json& tabs_json = doc.is_object() && doc.contains("tabs") ? doc["tabs"] : doc;
+  const JsonNode tabs(tabs_json, source, "tabs");
+  PlateGeometry g;
+  for (size_t i = 0; i < tabs.size(); ++i) {
+    const JsonNode tab = tabs.at(i);
+    const JsonNode corners = tab.at("corners");
+    if (corners.size() < 3) corners.fail("a tab needs at least 3 corners");
+    std::vector<Vec3> poly;
+    for (size_t k = 0; k < corners.size(); ++k) poly.push_back(corners.at(k).as_vec3());
+    g.polygons.push_back(poly);
+    const long long ra = tab.has("rivet_area") ? tab.at("rivet_area").as_integer() : -1;
+    g.rivet_area.push_back(static_cast<int>(ra));
+    g.rivet_edge.push_back(i == 0 ? 0 : kFarEdge);
+  }
+  return g;
+}
+
+}  // namespace sheetgen

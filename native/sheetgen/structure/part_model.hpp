@@ -1,0 +1,78 @@
+#pragma once
+// A part's structural model (DESIGN.md "FEM"): its tabs meshed as one
+// conforming shell, rivet flanges clamped at their rivets, the load box rigid
+// and bonded to the base tab (master node at the box centroid carrying the
+// force and moment), self-rivets as rigid ties. Also the one-call analysis the
+// composition step uses, and the CalculiX deck of the same model.
+#include <string>
+#include <vector>
+
+#include "sheetgen/core/problem.hpp"
+#include "sheetgen/fem/plate_mesher.hpp"
+#include "sheetgen/fem/shell_model.hpp"
+#include "sheetgen/part/part.hpp"
+#include "sheetgen/part/realisation.hpp"
+
+namespace sheetgen {
+
+// The geometry the FEM needs, independent of how it was produced (a Part in
+// memory, or the tabs[] of a result.json): planar convex polygons, m, with the
+// rivet area each one is riveted to (-1 = none) and the edge rivets line up along.
+struct PlateGeometry {
+  std::vector<std::vector<Vec3>> polygons;
+  std::vector<int> rivet_area;  // per polygon
+  std::vector<int> rivet_edge;  // per polygon: edge i (vertex i -> i+1) rivets run along
+};
+
+// A self-rivet: two points (one on each sheet, m) that are tied rigidly.
+struct SelfRivetTie {
+  int polygon_a = -1, polygon_b = -1;
+  Vec3 point_a = Vec3::Zero(), point_b = Vec3::Zero();
+};
+
+struct PartModelOptions {
+  double element_size = 0;                // m; <= 0: default_element_size (docs/fem.md)
+  std::vector<SelfRivetTie> self_rivets;  // tied after meshing
+};
+
+struct PartModel {
+  ShellModel model;
+  PlateMesh mesh;                     // mesh.element_polygon: element -> polygon
+  int load_node = -1;                 // the rigid box's master (centroid) node
+  std::vector<Vec3> rivets;           // m, rivet centres on flanges
+  std::vector<int> rivet_polygon;     // per rivet, the flange polygon
+};
+
+// Tabs of a realised part as plate geometry; a rivet flange's rivets run along its far edge.
+PlateGeometry plate_geometry(const Part& part, const RealisedPart& realised);
+
+// Throws FemError (a sentence naming the cause) when the model cannot be built:
+// no rivet flange (nothing holds the part: a mechanism), no base-tab node under
+// the load box, a flange too small for one rivet, zero thickness.
+PartModel build_part_model(const Problem& problem, int load_index, const PlateGeometry& geometry,
+                           const PartModelOptions& options = {});
+
+struct StructuralResult {
+  double compliance = 0;        // J, f^T u
+  double deflection = 0;        // m, translation of the load centroid
+  double max_von_mises = 0;     // Pa, by the stress rule of docs/fem.md
+  double margin_of_safety = 0;  // -, Fty / (SF sigma) - 1
+  double compliance_limit = 0;  // J, from the requirements
+  bool stiff_enough = false;    // compliance <= limit
+  bool strong_enough = false;   // MS >= required
+  int elements = 0;
+  int dofs = 0;                 // reduced unknowns
+  int rivets = 0;
+  double seconds = 0;           // build + solve
+};
+
+// Builds and solves. `solver` (optional) keeps symbolic factorisations between
+// calls (composition solves many similar parts); one solver per thread.
+StructuralResult analyse_part(const Problem& problem, int load_index, const PlateGeometry& geometry,
+                              const PartModelOptions& options = {}, ShellSolver* solver = nullptr);
+
+// The tabs[] of a sheetgen-result/1 part (corners, rivet_area) as plate geometry.
+// Throws InputError naming `source` and the field when the JSON is malformed.
+PlateGeometry plate_geometry_from_json(const std::string& json_tabs_text, const std::string& source);
+
+}  // namespace sheetgen

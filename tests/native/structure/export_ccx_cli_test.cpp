@@ -1,0 +1,72 @@
+// `sheetgen export-ccx` writes exactly the deck of the in-process model, and
+// bad requests are one line with exit code 1.
+#include <gtest/gtest.h>
+#include <sys/wait.h>
+
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <sstream>
+
+#include "sheetgen/fem/ccx_export.hpp"
+#include "sheetgen/part/exports.hpp"
+#include "sheetgen/structure/part_model.hpp"
+
+namespace sheetgen {
+namespace {
+
+namespace fs = std::filesystem;
+
+std::pair<int, std::string> run(const std::string& args) {
+  const std::string cmd = std::string(SHEETGEN_BINARY_DIR) + "/native/cli/sheetgen " + args + " 2>&1";
+  FILE* pipe = popen(cmd.c_str(), "r");
+  std::string out;
+  char buf[4096];
+  while (pipe && fgets(buf, sizeof buf, pipe)) out += buf;
+  const int status = pipe ? pclose(pipe) : -1;
+  return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, out};
+}
+
+std::string slurp(const fs::path& p) {
+  std::ifstream in(p, std::ios::binary);
+  std::stringstream ss;
+  ss << in.rdbuf();
+  return ss.str();
+}
+
+TEST(ExportCcxCli, DeckEqualsTheLibraryModel) {
+  const fs::path dir = fs::temp_directory_path() / ("sheetgen export ccx " + std::to_string(::getpid()));  // a space on purpose
+  fs::create_directories(dir);
+  const nlohmann::json problem = nlohmann::json::parse(R"({
+    "format": "sheetgen-problem/1",
+    "environment": {"meshes": [{"name": "floor", "vertices": [[-1,-1,0],[1,-1,0],[1,1,0],[-1,1,0]], "triangles": [[0,1,2],[0,2,3]]}]},
+    "rivet_areas": [{"name": "floor", "mesh": "floor", "faces": [0, 1]}],
+    "loads": [{"name": "box", "center": [0, 0, 0.2], "size": [0.1, 0.1, 0.1], "force": [0, 0, -350]}]
+  })");
+  std::ofstream(dir / "problem.json") << problem.dump(2);
+  const Problem p = load_problem((dir / "problem.json").string());
+  Part part = make_base_part(p.loads[0], 0, p.material.thickness);
+  const double zb = 0.15 - 0.5 * p.material.thickness;
+  const int leg = part.add_tab(0, 1, TabParameters{0.0, 0.1, zb - 0.5 * p.material.thickness, 0, 0, -M_PI / 2});
+  part.add_tab(leg, kFarEdge, TabParameters{0.0, 0.1, 0.03, 0, 0, M_PI / 2}, 0);
+  const RealisedPart rp = realise(part);
+  nlohmann::json result = {{"format", "sheetgen-result/1"}, {"problem", "problem.json"},
+                           {"parts", {{{"load", "box"}, {"status", "ok"}, {"tabs", part_json(part, rp)}}}}};
+  std::ofstream(dir / "result.json") << result.dump(2);
+
+  const auto [code, out] = run("export-ccx '" + (dir / "result.json").string() + "' --load box --out '" + (dir / "deck.inp").string() + "'");
+  ASSERT_EQ(code, 0) << out;
+  std::ostringstream expected;
+  write_ccx_deck(build_part_model(p, 0, plate_geometry(part, rp)).model, expected);
+  EXPECT_EQ(slurp(dir / "deck.inp"), expected.str());
+  EXPECT_FALSE(fs::exists(dir / "deck.inp.tmp"));
+
+  const auto [code2, out2] = run("export-ccx '" + (dir / "result.json").string() + "' --load crate --out '" + (dir / "x.inp").string() + "'");
+  EXPECT_EQ(code2, 1);
+  EXPECT_NE(out2.find("no load named 'crate'"), std::string::npos) << out2;
+  EXPECT_FALSE(fs::exists(dir / "x.inp"));
+  fs::remove_all(dir);
+}
+
+}  // namespace
+}  // namespace sheetgen
