@@ -1,0 +1,12 @@
+"""The bpy-free core of the sheetgen add-on (STYLE.md point 9).
+
+Everything here is plain Python (no ``bpy``, no numpy) and is tested outside
+Blender by ``tests/python/test_addon_core_*.py``:
+
+- ``model``: the scene as plain data (meshes in world space, rivet-area ids per
+  triangle, load boxes, settings with the defaults of docs/problem-format.md);
+- ``problem``: scene data <-> ``sheetgen-problem/1`` dict, with validation
+  messages that name the object and the field;
+- ``geometry``: triangle areas, quaternions, float32 number cleaning;
+- ``jsonio``: compact JSON text and atomic file writes.
+"""

@@ -1,0 +1,164 @@
+"""The "Sheet Metal" tab of the 3D View sidebar (N panel)."""
+import bpy
+
+from . import native
+
+CATEGORY = "Sheet Metal"
+
+
+class _Panel:
+    bl_space_type = 'VIEW_3D'
+    bl_region_type = 'UI'
+    bl_category = CATEGORY
+
+
+class SHEETGEN_UL_rivet_areas(bpy.types.UIList):
+    def draw_item(self, context, layout, data, item, icon, active_data, active_propname, index):
+        row = layout.row(align=True)
+        row.prop(item, "color", text="")
+        row.prop(item, "name", text="", emboss=False)
+        sub = row.row()
+        sub.alignment = 'RIGHT'
+        sub.label(text="%.4g m²  (%d)" % (item.area_m2, item.face_count))
+
+
+class SHEETGEN_PT_main(_Panel, bpy.types.Panel):
+    bl_label = "sheetgen"
+    bl_idname = "SHEETGEN_PT_main"
+
+    def draw(self, context):
+        layout = self.layout
+        p = context.scene.sheetgen
+        err = native.error()
+        if err:
+            box = layout.box()
+            box.alert = True
+            box.label(text="Native module not loaded", icon='ERROR')
+            col = box.column(align=True)
+            # A long sentence: wrap it by hand, the label does not.
+            words, line = err.split(), ""
+            for w in words:
+                if len(line) + len(w) > 48:
+                    col.label(text=line)
+                    line = ""
+                line += (" " if line else "") + w
+            if line:
+                col.label(text=line)
+        layout.prop(p, "problem_name")
+        row = layout.row(align=True)
+        row.operator("sheetgen.import_problem", icon='IMPORT', text="Import")
+        row.operator("sheetgen.export_problem", icon='EXPORT', text="Export")
+        layout.operator("sheetgen.check_problem", icon='CHECKMARK')
+        # Generate lands here with the native generate(): see generate.py.
+        col = layout.column()
+        col.enabled = False
+        col.label(text="Generate: needs the native generate()", icon='MOD_SOLIDIFY')
+
+
+class SHEETGEN_PT_rivet_areas(_Panel, bpy.types.Panel):
+    bl_label = "Rivet Areas"
+    bl_parent_id = "SHEETGEN_PT_main"
+
+    def draw(self, context):
+        layout = self.layout
+        obj = context.active_object
+        if obj is None or obj.type != 'MESH':
+            layout.label(text="Select an environment mesh")
+            return
+        if obj.sheetgen.is_load:
+            layout.label(text="'%s' is a load, not environment" % obj.name, icon='INFO')
+            return
+        layout.prop(obj.sheetgen, "exclude")
+        row = layout.row()
+        row.template_list("SHEETGEN_UL_rivet_areas", "", obj.sheetgen, "rivet_areas", obj.sheetgen,
+                          "rivet_area_index", rows=3)
+        col = row.column(align=True)
+        col.operator("sheetgen.rivet_area_add", icon='ADD', text="")
+        col.operator("sheetgen.rivet_area_remove", icon='REMOVE', text="")
+        col.separator()
+        col.operator("sheetgen.rivet_area_refresh", icon='FILE_REFRESH', text="")
+        if context.mode == 'EDIT_MESH':
+            row = layout.row(align=True)
+            row.operator("sheetgen.rivet_area_mark")
+            row.operator("sheetgen.rivet_area_unmark")
+            row.operator("sheetgen.rivet_area_select")
+        else:
+            layout.label(text="Edit Mode: select faces, then Mark", icon='EDITMODE_HLT')
+        layout.operator("sheetgen.show_rivet_areas", icon='SHADING_SOLID')
+
+
+class SHEETGEN_PT_loads(_Panel, bpy.types.Panel):
+    bl_label = "Loads"
+    bl_parent_id = "SHEETGEN_PT_main"
+
+    def draw(self, context):
+        layout = self.layout
+        obj = context.active_object
+        if obj is not None and obj.sheetgen.is_load:
+            s = obj.sheetgen
+            layout.label(text=obj.name, icon='CUBE')
+            layout.prop(s, "force", text="Force (N)")
+            layout.prop(s, "moment", text="Moment (N·m)")
+            d = obj.dimensions
+            layout.label(text="Box %.4g × %.4g × %.4g m" % (d[0], d[1], d[2]))
+            layout.operator("sheetgen.load_clear", icon='X')
+        elif obj is not None and obj.type == 'MESH':
+            layout.operator("sheetgen.load_make", icon='ORIENTATION_GLOBAL')
+        names = [o.name for o in context.scene.objects if o.sheetgen.is_load]
+        layout.label(text="Loads in scene: %s" % (", ".join(names) if names else "none"))
+
+
+class SHEETGEN_PT_material(_Panel, bpy.types.Panel):
+    bl_label = "Material"
+    bl_parent_id = "SHEETGEN_PT_main"
+    bl_options = {'DEFAULT_CLOSED'}
+
+    def draw(self, context):
+        p = context.scene.sheetgen
+        col = self.layout.column(align=True)
+        for key in ("youngs_modulus_gpa", "poisson_ratio", "density", "yield_strength_mpa", "ultimate_strength_mpa",
+                    "thickness_mm"):
+            col.prop(p, key)
+
+
+class SHEETGEN_PT_requirements(_Panel, bpy.types.Panel):
+    bl_label = "Requirements"
+    bl_parent_id = "SHEETGEN_PT_main"
+    bl_options = {'DEFAULT_CLOSED'}
+
+    def draw(self, context):
+        p = context.scene.sheetgen
+        col = self.layout.column(align=True)
+        col.prop(p, "stiffness_limit", text="")
+        col.prop(p, "max_deflection_mm" if p.stiffness_limit == 'DEFLECTION' else "max_compliance")
+        for key in ("min_margin_of_safety", "safety_factor", "clearance_mm"):
+            col.prop(p, key)
+
+
+class SHEETGEN_PT_search(_Panel, bpy.types.Panel):
+    bl_label = "Search"
+    bl_parent_id = "SHEETGEN_PT_main"
+    bl_options = {'DEFAULT_CLOSED'}
+
+    def draw(self, context):
+        p = context.scene.sheetgen
+        col = self.layout.column(align=True)
+        for key in ("chains", "iterations", "beam_width", "seed", "threads"):
+            col.prop(p, key)
+        col.separator()
+        for key in ("alpha", "beta", "scene_unit"):
+            col.prop(p, key)
+
+
+CLASSES = (SHEETGEN_UL_rivet_areas, SHEETGEN_PT_main, SHEETGEN_PT_rivet_areas, SHEETGEN_PT_loads,
+           SHEETGEN_PT_material, SHEETGEN_PT_requirements, SHEETGEN_PT_search)
+
+
+def register():
+    for c in CLASSES:
+        bpy.utils.register_class(c)
+
+
+def unregister():
+    for c in reversed(CLASSES):
+        bpy.utils.unregister_class(c)

@@ -1,0 +1,111 @@
+"""Blender properties: per-object rivet areas and load data, per-scene settings.
+
+Settings are shown in engineering units (GPa, MPa, mm) and converted to SI by
+scene_io.read_settings; the defaults are docs/problem-format.md's.
+"""
+import bpy
+from bpy.props import (BoolProperty, CollectionProperty, EnumProperty, FloatProperty, FloatVectorProperty,
+                       IntProperty, PointerProperty, StringProperty)
+
+from .core import model
+
+_M = model.Material()
+_R = model.Requirements()
+_S = model.Search()
+
+
+def _recolor(self, context):
+    from . import tagging
+    obj = self.id_data
+    if isinstance(obj, bpy.types.Object) and obj.type == 'MESH':
+        tagging.recolor(obj)
+
+
+def _update_arrow(self, context):
+    from . import loads
+    obj = self.id_data
+    if isinstance(obj, bpy.types.Object) and self.is_load:
+        loads.update_arrow(obj)
+
+
+class SheetgenRivetArea(bpy.types.PropertyGroup):
+    # ``name`` (the rivet area name in the problem) comes with PropertyGroup.
+    area_id: IntProperty(name="Id", min=1, description="Value of the sheetgen_rivet_area face attribute for this area")
+    area_m2: FloatProperty(name="Area", precision=6, description="World-space area in m² (refresh after transforms)")
+    face_count: IntProperty(name="Faces", description="Number of faces (polygons) tagged with this area")
+    color: FloatVectorProperty(name="Colour", subtype='COLOR_GAMMA', size=3, min=0.0, max=1.0,
+                               default=(1.0, 0.3, 0.1),
+                               update=_recolor, description="Viewport colour of the area's faces")
+
+
+class SheetgenObjectSettings(bpy.types.PropertyGroup):
+    rivet_areas: CollectionProperty(type=SheetgenRivetArea)
+    rivet_area_index: IntProperty(name="Active rivet area", default=0)
+    exclude: BoolProperty(name="Not in environment", default=False,
+                          description="Leave this mesh out of the environment (not an obstacle, no rivet areas)")
+    is_load: BoolProperty(name="Load", default=False, description="This box is a load that a bracket must hold")
+    force: FloatVectorProperty(name="Force", size=3, subtype='XYZ', default=(0.0, 0.0, -100.0), precision=3,
+                               update=_update_arrow, description="Force on the box centroid, N, world axes")
+    moment: FloatVectorProperty(name="Moment", size=3, subtype='XYZ', default=(0.0, 0.0, 0.0), precision=3,
+                                description="Moment about the box centroid, N·m, world axes")
+    arrow: PointerProperty(type=bpy.types.Object, name="Force arrow")
+    is_arrow: BoolProperty(default=False, description="Force arrow drawn for a load (not part of the problem)")
+
+
+class SheetgenSceneSettings(bpy.types.PropertyGroup):
+    problem_name: StringProperty(name="Name", default="", description="Problem name (empty: the scene name)")
+    description: StringProperty(name="Description", default="")
+    filepath: StringProperty(name="Problem file", subtype='FILE_PATH', default="//problem.json")
+    # material
+    youngs_modulus_gpa: FloatProperty(name="E (GPa)", default=_M.youngs_modulus / 1e9, min=1e-6, precision=2,
+                                      description="Young's modulus, GPa")
+    poisson_ratio: FloatProperty(name="ν", default=_M.poisson_ratio, min=-0.999, max=0.499, precision=3,
+                                 description="Poisson's ratio")
+    density: FloatProperty(name="Density (kg/m³)", default=_M.density, min=1e-6, precision=1)
+    yield_strength_mpa: FloatProperty(name="Fty (MPa)", default=_M.yield_strength / 1e6, min=1e-6, precision=1,
+                                      description="Yield strength, MPa")
+    ultimate_strength_mpa: FloatProperty(name="Ftu (MPa)", default=_M.ultimate_strength / 1e6, min=1e-6,
+                                         precision=1, description="Ultimate strength, MPa")
+    thickness_mm: FloatProperty(name="Thickness (mm)", default=_M.thickness * 1e3, min=1e-6, precision=3,
+                                description="Sheet thickness, mm")
+    # requirements
+    stiffness_limit: EnumProperty(name="Stiffness", default='DEFLECTION', items=[
+        ('DEFLECTION', "Max deflection", "Limit the deflection at the load point (C_max = |F|·δ_max)"),
+        ('COMPLIANCE', "Max compliance", "Limit the compliance fᵀu (J)")])
+    max_deflection_mm: FloatProperty(name="Max deflection (mm)", default=_R.max_deflection * 1e3, min=1e-9,
+                                     precision=3)
+    max_compliance: FloatProperty(name="Max compliance (J)", default=0.1, min=1e-12, precision=4)
+    min_margin_of_safety: FloatProperty(name="Min MS", default=_R.min_margin_of_safety, precision=3,
+                                        description="Minimum margin of safety MS = Fty/(SF·σ_vm,max) − 1")
+    safety_factor: FloatProperty(name="Safety factor", default=_R.safety_factor, min=1e-6, precision=3)
+    clearance_mm: FloatProperty(name="Clearance (mm)", default=_R.clearance * 1e3, min=0.0, precision=3,
+                                description="Gap kept beyond t/2 between the sheet and any obstacle, mm")
+    # search
+    chains: IntProperty(name="Chains", default=_S.chains, min=1, max=1024)
+    iterations: IntProperty(name="Iterations", default=_S.iterations, min=0, max=10000000)
+    beam_width: IntProperty(name="Beam width", default=_S.beam_width, min=1, max=4096)
+    seed: IntProperty(name="Seed", default=_S.seed, min=0)
+    alpha: FloatProperty(name="α", default=_S.alpha, min=0.0, description="Eq. 1 of the paper")
+    beta: FloatProperty(name="β", default=_S.beta, min=0.0, description="Eq. 1 of the paper")
+    scene_unit: FloatProperty(name="Scene unit (m)", default=_S.scene_unit, min=1e-6, precision=3,
+                              description="Length unit of the distances in Eq. 1–2 of the paper, m")
+    threads: IntProperty(name="Threads", default=_S.threads, min=0, max=1024, description="0 = all cores")
+    # Manufacturing limits have no UI yet; an imported problem's section is kept verbatim.
+    manufacturing_json: StringProperty(name="Manufacturing (JSON)", default="{}")
+
+
+CLASSES = (SheetgenRivetArea, SheetgenObjectSettings, SheetgenSceneSettings)
+
+
+def register():
+    for c in CLASSES:
+        bpy.utils.register_class(c)
+    bpy.types.Object.sheetgen = PointerProperty(type=SheetgenObjectSettings)
+    bpy.types.Scene.sheetgen = PointerProperty(type=SheetgenSceneSettings)
+
+
+def unregister():
+    del bpy.types.Scene.sheetgen
+    del bpy.types.Object.sheetgen
+    for c in reversed(CLASSES):
+        bpy.utils.unregister_class(c)
