@@ -1,0 +1,250 @@
+#include "sheetgen/discovery/segment_optimiser.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include "sheetgen/env/environment.hpp"
+#include "sheetgen/part/flat_pattern.hpp"
+#include "sheetgen/part/validity.hpp"
+
+namespace sheetgen {
+
+double SegmentWork::length() const {
+  double s = 0;
+  for (int i = first; i < flange; ++i) s += part.tabs[i].params.l;
+  return s;
+}
+
+double SegmentWork::area() const {
+  double s = 0;
+  for (int i = first; i <= flange; ++i) s += part.tabs[i].params.w * part.tabs[i].params.l;
+  return s;
+}
+
+bool segment_valid(const SegmentWork& work, const Environment& env, const SheetSpec& spec) {
+  const RealisedPart rp = realise(work.part);
+  if (!check_validity(work.part, rp, env).valid()) return false;
+  const FlatPattern flat = unfold(work.part, spec);
+  return flat.ok() && check_flat_pattern(flat, spec).valid();
+}
+
+namespace {
+
+// The free variables of the contraction: (tab, 0 = l / 1 = theta3).
+struct Var {
+  int tab;
+  int kind;
+};
+
+std::vector<Var> contraction_vars(const SegmentWork& w) {
+  std::vector<Var> v;
+  const int last = w.flange - 1;
+  for (int i = w.first; i <= last; ++i) {
+    if (i < last) v.push_back({i, 0});
+    v.push_back({i, 1});
+  }
+  return v;
+}
+
+// Sets the variables and re-attaches; false when a limit or the attachment fails.
+bool apply_vars(SegmentWork& w, const std::vector<Var>& vars, const std::vector<double>& q, const SheetSpec& spec) {
+  const Manufacturing& m = spec.manufacturing;
+  for (size_t k = 0; k < vars.size(); ++k) {
+    TabParameters& p = w.part.tabs[vars[k].tab].params;
+    if (vars[k].kind == 0) {
+      if (q[k] < m.min_tab_length || q[k] > m.max_tab_length) return false;
+      p.l = q[k];
+    } else {
+      const double a = std::abs(q[k]);
+      if (a < m.min_bend_angle || a > m.max_bend_angle) return false;
+      p.theta3 = q[k];
+    }
+  }
+  const double prev = w.part.tabs[w.flange].params.theta3;
+  return attach_flange(w.part, w.flange - 1, w.plane, spec, w.flange, prev) == w.flange;
+}
+
+std::vector<double> read_vars(const SegmentWork& w, const std::vector<Var>& vars) {
+  std::vector<double> q(vars.size());
+  for (size_t k = 0; k < vars.size(); ++k) {
+    const TabParameters& p = w.part.tabs[vars[k].tab].params;
+    q[k] = vars[k].kind == 0 ? p.l : p.theta3;
+  }
+  return q;
+}
+
+}  // namespace
+
+ContractResult contract_segment(SegmentWork& work, const Environment& env, const SheetSpec& spec,
+                                const ContractOptions& o) {
+  ContractResult r;
+  r.length_before = r.length_after = work.length();
+  const std::vector<Var> vars = contraction_vars(work);
+  std::vector<double> scale(vars.size());
+  for (size_t k = 0; k < vars.size(); ++k) scale[k] = vars[k].kind == 0 ? 1.0 : o.angle_scale;
+  double step = o.step;
+  double energy = work.length();
+  int attempts = 0;
+  while (attempts < o.max_steps && step >= o.min_step) {
+    ++attempts;
+    const std::vector<double> q = read_vars(work, vars);
+    // Gradient of the summed length through the attachment, in scaled variables.
+    std::vector<double> g(vars.size(), 0.0);
+    double gnorm = 0;
+    for (size_t k = 0; k < vars.size(); ++k) {
+      SegmentWork probe = work;
+      std::vector<double> qp = q;
+      const double h = o.finite_difference / scale[k];
+      // step towards the interior of the limits so the probe is evaluable
+      const double dir = (vars[k].kind == 0 || q[k] > 0) ? -1.0 : 1.0;
+      qp[k] += dir * h;
+      if (!apply_vars(probe, vars, qp, spec)) continue;
+      g[k] = (probe.length() - energy) / (dir * o.finite_difference);  // per scaled unit
+      gnorm = std::max(gnorm, std::abs(g[k]));
+    }
+    if (gnorm < 1e-9) { r.converged = true; break; }
+    bool accepted = false;
+    while (step >= o.min_step) {
+      std::vector<double> qn = q;
+      for (size_t k = 0; k < vars.size(); ++k) qn[k] -= step * g[k] / gnorm / scale[k];
+      SegmentWork next = work;
+      if (apply_vars(next, vars, qn, spec)) {
+        const double e = next.length();
+        if (e < energy - 1e-9) {
+          const RealisedPart rp = realise(next.part);
+          if (check_validity(next.part, rp, env).valid()) {
+            work = std::move(next);
+            energy = e;
+            accepted = true;
+            break;
+          }
+        }
+      }
+      step *= 0.5;
+    }
+    if (!accepted) { r.converged = true; break; }
+    ++r.steps;
+    r.lengths.push_back(energy);
+    if (o.record_states) r.states.push_back(work.part);
+    step = std::min(o.step, step * 1.5);
+  }
+  r.length_after = work.length();
+  return r;
+}
+
+Part remove_tab_reparent(const Part& part, int j) {
+  const RealisedPart rp = realise(part);
+  Part out;
+  out.load = part.load;
+  out.base = part.base;
+  const int pj = part.tabs[j].parent;
+  for (int i = 0; i < part.size(); ++i) {
+    if (i == j) continue;
+    Tab t = part.tabs[i];
+    if (t.parent == j) {
+      // keep the root start P0 where it was, on the same edge index of j's parent
+      const Vec3 p0 = rp.tabs[i].origin;
+      const auto& c = rp.tabs[pj].corners;
+      const int e = t.parent_edge;
+      const Vec3 a = c[e], b = c[(e + 1) % c.size()];
+      t.parent = pj;
+      t.params.d = std::max(0.0, (p0 - a).dot((b - a).normalized()));
+    }
+    if (t.parent > j) --t.parent;
+    out.tabs.push_back(t);
+  }
+  return out;
+}
+
+int merge_coplanar(SegmentWork& work, const Environment& env, const SheetSpec& spec, const MergeOptions& o) {
+  const double max_angle = o.max_angle >= 0 ? o.max_angle : 1.5 * spec.manufacturing.min_bend_angle;
+  int merges = 0;
+  for (int j = work.first + 1; j < work.flange; ++j) {
+    const Tab& tj = work.part.tabs[j];
+    if (std::abs(tj.params.theta3) > max_angle || tj.parent_edge != kFarEdge) continue;
+    const int i = tj.parent;
+    SegmentWork next = work;
+    // One tab over both: lengths add along the common direction, the far edge is j's.
+    TabParameters& pi = next.part.tabs[i].params;
+    pi.l += tj.params.l * std::cos(tj.params.theta3);
+    pi.theta1 = tj.params.theta1;
+    next.part = remove_tab_reparent(next.part, j);
+    next.flange -= 1;
+    const double before = work.length();
+    const double prev = next.part.tabs[next.flange].params.theta3;
+    if (attach_flange(next.part, next.flange - 1, next.plane, spec, next.flange, prev) != next.flange) continue;
+    if (next.length() > before * (1 + o.max_length_growth)) continue;
+    if (!segment_valid(next, env, spec)) continue;
+    work = std::move(next);
+    ++merges;
+    --j;  // the tab now at j is the old j + 1
+  }
+  return merges;
+}
+
+WidenResult widen_segment(SegmentWork& work, const Environment& env, const SheetSpec& spec, const WidenOptions& o) {
+  WidenResult r;
+  r.area_before = work.area();
+  const SegmentWork original = work;
+  for (int i = work.first; i <= work.flange; ++i) {
+    double step = o.initial_step;
+    while (step >= o.min_step) {
+      bool accepted = false;
+      for (int variant = 0; variant < 3 && !accepted; ++variant) {
+        SegmentWork next = work;
+        const RealisedPart rp = realise(next.part);
+        Tab& tab = next.part.tabs[i];
+        TabParameters& p = tab.params;
+        const auto& pc = rp.tabs[tab.parent].corners;
+        const int e = tab.parent_edge;
+        const double edge_len = (pc[(e + 1) % pc.size()] - pc[e]).norm();
+        // The flat root slides by -dL tan(theta2) along the parent edge (docs/manufacturing.md).
+        const double shift = -bend_length_change(p.theta3, spec) * std::tan(p.theta2);
+        const double lo = std::max(0.0, -shift) + 1e-9, hi = edge_len - std::max(0.0, shift) - 1e-9;
+        double d = p.d, end = p.d + p.w;
+        if (variant == 0) { d -= step; end += step; }
+        else if (variant == 1) end += step;
+        else d -= step;
+        d = std::max(d, std::min(lo, p.d));
+        end = std::min(end, std::max(hi, p.d + p.w));
+        if (d >= p.d - 1e-12 && end <= p.d + p.w + 1e-12) continue;  // no room on that side
+        // children keep their root start in the world
+        std::vector<std::pair<int, Vec3>> kids;
+        for (int c = i + 1; c < next.part.size(); ++c)
+          if (next.part.tabs[c].parent == i) kids.push_back({c, rp.tabs[c].origin});
+        p.d = d;
+        p.w = end - d;
+        RealisedPart rn = realise(next.part);
+        for (const auto& [c, p0] : kids) {
+          const Tab& ct = next.part.tabs[c];
+          const auto& cc = rn.tabs[i].corners;
+          const Vec3 a = cc[ct.parent_edge], b = cc[(ct.parent_edge + 1) % cc.size()];
+          next.part.tabs[c].params.d = std::max(0.0, (p0 - a).dot((b - a).normalized()));
+        }
+        // Only tab i changed (its children kept their roots): check what involves it, and the unfold.
+        ValidityOptions vo;
+        vo.only_tab = i;
+        bool ok = check_validity(next.part, realise(next.part), env, vo).valid();
+        if (ok) {
+          const FlatPattern flat = unfold(next.part, spec);
+          ok = flat.ok() && check_flat_pattern(flat, spec).valid();
+        }
+        if (ok) {
+          work = std::move(next);
+          accepted = true;
+          ++r.steps;
+        }
+      }
+      if (!accepted) step *= 0.5;
+    }
+  }
+  // The per-tab checks above are incremental; the whole segment is checked once at the end.
+  if (r.steps > 0 && !segment_valid(work, env, spec)) {
+    work = original;
+    r.steps = 0;
+  }
+  r.area_after = work.area();
+  return r;
+}
+
+}  // namespace sheetgen

@@ -1,0 +1,54 @@
+#pragma once
+// Small scenes assembled in code for the discovery unit tests.
+#include "sheetgen/core/problem.hpp"
+
+namespace sheetgen::testing_scenes {
+
+inline Manufacturing manufacturing() {
+  Manufacturing m;  // DESIGN.md defaults for t = 1.6 mm
+  m.bend_radius = 6.4e-3;
+  m.k_factor = 0.45;
+  m.kerf = 0.2e-3;
+  m.min_flange = 12.8e-3;
+  m.min_tab_width = 16e-3;
+  m.min_tab_length = 16e-3;
+  m.rivet_diameter = 3.96875e-3;
+  m.rivet_edge_distance = 2 * m.rivet_diameter;
+  m.rivet_pitch = 6 * m.rivet_diameter;
+  return m;
+}
+
+// Rectangle from corner o spanned by u and v (normal u x v), two triangles.
+inline TriangleMesh quad(const Vec3& o, const Vec3& u, const Vec3& v) {
+  TriangleMesh m;
+  m.vertices = {o, o + u, o + u + v, o + v};
+  m.triangles = {{0, 1, 2}, {0, 2, 3}};
+  return m;
+}
+
+// Load 40 x 40 x 20 mm whose base tab is the square (0,0)-(40,40) mm at z = 0.
+inline Problem base_problem() {
+  Problem p;
+  p.source = "<test>";
+  p.material.thickness = 1.6e-3;
+  p.requirements.clearance = 1e-3;
+  p.manufacturing = manufacturing();
+  Load load;
+  load.name = "box";
+  load.center = Vec3(0.02, 0.02, 0.0108);
+  load.size = Vec3(0.04, 0.04, 0.02);
+  load.force = Vec3(0, 0, -100);
+  p.loads.push_back(load);
+  return p;
+}
+
+inline void add_rivet_mesh(Problem& p, const std::string& name, const TriangleMesh& m) {
+  p.meshes.push_back({name, m, "<inline>"});
+  RivetAreaSpec ra;
+  ra.name = name;
+  ra.mesh = static_cast<int>(p.meshes.size()) - 1;
+  ra.faces = {0, 1};
+  p.rivet_areas.push_back(ra);
+}
+
+}  // namespace sheetgen::testing_scenes

@@ -1,0 +1,97 @@
+// Contraction of a zig-zag feeler and widening against a wall.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "scene_fixture.hpp"
+#include "sheetgen/discovery/segment_optimiser.hpp"
+#include "sheetgen/env/environment.hpp"
+#include "sheetgen/part/validity.hpp"
+
+namespace sheetgen {
+namespace {
+
+using namespace testing_scenes;
+const double kDeg = M_PI / 180.0;
+
+// A rivet wall in the plane x = -0.2 m facing +x (towards the base at x 0..0.04).
+Problem wall_problem() {
+  Problem p = base_problem();
+  add_rivet_mesh(p, "wall", quad(Vec3(-0.2, -0.2, -0.2), Vec3(0, 0.4, 0), Vec3(0, 0, 0.4)));
+  return p;
+}
+
+RivetPlane wall_plane() { return {0, Vec3(-0.2, 0, 0), Vec3(1, 0, 0)}; }
+
+TEST(SegmentOptimiser, ContractionShortensZigZagAndStaysValid) {
+  const Problem problem = wall_problem();
+  const Environment env(problem);
+  const SheetSpec spec = SheetSpec::from(problem);
+  SegmentWork w;
+  w.plane = wall_plane();
+  w.part = make_base_part(problem.loads[0], 0, spec.thickness);
+  w.first = 1;
+  // Zig-zag from base edge 3 (the -x side): up 30 deg for 60 mm, then down 60 deg to the wall.
+  const int a = w.part.add_tab(0, 3, {0.012, 0.016, 0.06, 0, 0, 30 * kDeg});
+  const int b = w.part.add_tab(a, kFarEdge, {0.0, 0.016, 0.05, 0, 0, -60 * kDeg});
+  w.flange = attach_flange(w.part, b, w.plane, spec);
+  ASSERT_EQ(w.flange, 3);
+  ASSERT_TRUE(check_validity(w.part, realise(w.part), env).valid()) << check_validity(w.part, realise(w.part), env).summary();
+  ContractOptions o;
+  o.record_states = true;
+  const ContractResult r = contract_segment(w, env, spec, o);
+  // Before: 60 + the second leg down from z = 30 mm at x = -52 mm to the wall: about 170 mm.
+  std::printf("contraction: %.1f mm -> %.1f mm in %d steps\n", r.length_before * 1e3, r.length_after * 1e3, r.steps);
+  ASSERT_GT(r.steps, 0);
+  // Strictly decreasing, every intermediate state valid and attached.
+  double prev = r.length_before;
+  for (size_t k = 0; k < r.states.size(); ++k) {
+    EXPECT_LT(r.lengths[k], prev);
+    prev = r.lengths[k];
+    const ValidityReport v = check_validity(r.states[k], realise(r.states[k]), env);
+    EXPECT_TRUE(v.valid()) << "state " << k << ": " << v.summary();
+    EXPECT_EQ(r.states[k].tabs.back().rivet_area, 0);
+  }
+  // Lower bound: the far edge lies on x = -0.2 + t/2, so the summed perpendicular
+  // lengths of unskewed tabs cannot be below 0.2 - t/2 m. The zig-zag gains at least 10 %.
+  EXPECT_GE(r.length_after, 0.2 - spec.thickness / 2 - 1e-9);
+  EXPECT_LT(r.length_after, 0.9 * r.length_before);
+}
+
+TEST(SegmentOptimiser, WideningStopsAtAWall) {
+  Problem problem = wall_problem();
+  // A plain plate (not a rivet area) in the plane y = 32 mm beside the tab's path.
+  problem.meshes.push_back({"plate", quad(Vec3(-0.15, 0.032, -0.2), Vec3(0.145, 0, 0), Vec3(0, 0, 0.25)), "<inline>"});
+  const Environment env(problem);
+  const SheetSpec spec = SheetSpec::from(problem);
+  SegmentWork w;
+  w.plane = wall_plane();
+  w.part = make_base_part(problem.loads[0], 0, spec.thickness);
+  w.first = 1;
+  // Base edge 3 runs from (0, 40) to (0, 0) mm: d = 12 mm puts the tab at y 12..28 mm.
+  const int a = w.part.add_tab(0, 3, {0.012, 0.016, 0.05, 0, 0, -30 * kDeg});
+  w.flange = attach_flange(w.part, a, w.plane, spec);
+  ASSERT_GE(w.flange, 0);
+  ASSERT_TRUE(check_validity(w.part, realise(w.part), env).valid()) << check_validity(w.part, realise(w.part), env).summary();
+  ASSERT_TRUE(segment_valid(w, env, spec));
+  const WidenResult r = widen_segment(w, env, spec);
+  const TabParameters& p = w.part.tabs[1].params;
+  std::printf("widening: d %.2f mm, w %.2f mm (y %.2f..%.2f), area %.0f -> %.0f mm^2\n", p.d * 1e3, p.w * 1e3,
+              (0.04 - p.d - p.w) * 1e3, (0.04 - p.d) * 1e3, r.area_before * 1e6, r.area_after * 1e6);
+  EXPECT_GT(r.steps, 0);
+  EXPECT_GT(p.w, 0.016);
+  // The -y side is free: it reaches the end of the base edge (y = 0) to within the 2 mm minimum step.
+  EXPECT_GE(p.d + p.w, 0.04 - 2e-3 - 1e-9);
+  // The +y side stops before the plate: y = 40 - d keeps t/2 + clearance = 1.8 mm from y = 32 mm.
+  EXPECT_LE(0.04 - p.d, 0.032 - 1.8e-3 + 1e-6);
+  EXPECT_LT(p.d, 0.012);  // it did grow towards the plate
+  // One more millimetre towards the plate collides.
+  Part more = w.part;
+  more.tabs[1].params.d -= 2e-3;
+  more.tabs[1].params.w += 2e-3;
+  EXPECT_FALSE(check_validity(more, realise(more), env).valid());
+  EXPECT_TRUE(segment_valid(w, env, spec));
+}
+
+}  // namespace
+}  // namespace sheetgen
