@@ -7,6 +7,7 @@
 #include <cstring>
 #include <iostream>
 
+#include "sheetgen/compose/generate.hpp"
 #include "sheetgen/core/input_error.hpp"
 #include "sheetgen/core/problem.hpp"
 #include "sheetgen/env/environment.hpp"
@@ -14,7 +15,12 @@
 #include "sheetgen/fem/fem_error.hpp"
 #include "sheetgen/structure/part_model.hpp"
 
+#include <atomic>
+#include <optional>
+#include <csignal>
 #include <filesystem>
+#include <thread>
+#include <unistd.h>
 #include <fstream>
 #include <nlohmann/json.hpp>
 #include <sstream>
@@ -139,6 +145,76 @@ int export_ccx(const std::string& result_path, const std::string& load_name, con
   return 0;
 }
 
+std::atomic<bool> g_interrupted{false};
+extern "C" void on_sigint(int) { g_interrupted = true; }
+
+struct SolveArgs {
+  std::string problem, out;
+  std::optional<std::uint64_t> seed;
+  std::optional<int> chains, iterations, beam, threads;
+  bool right_angles = false;
+};
+
+// `sheetgen solve`: exit 0 = every load has a valid part, 2 = some load has
+// none (result.json says why), 1 = bad input, 130 = interrupted (nothing written).
+int solve(const SolveArgs& a) {
+  const sheetgen::Problem problem = sheetgen::load_problem(a.problem);
+  sheetgen::GenerateOptions options;
+  options.chains = a.chains;
+  options.iterations = a.iterations;
+  options.beam_width = a.beam;
+  options.threads = a.threads;
+  options.seed = a.seed;
+  options.right_angles = a.right_angles;
+  sheetgen::GenerateProgress progress;
+  std::signal(SIGINT, on_sigint);
+  std::signal(SIGTERM, on_sigint);
+  sheetgen::GenerateResult result;
+  std::exception_ptr failure;
+  std::atomic<bool> finished{false};
+  std::thread worker([&] {
+    try {
+      result = sheetgen::generate(problem, options, &progress);
+    } catch (...) {
+      failure = std::current_exception();  // reaches the caller below, not std::terminate
+    }
+    finished = true;
+  });
+  const bool tty = ::isatty(STDERR_FILENO);
+  while (!finished.load()) {
+    if (g_interrupted.load()) progress.cancel = true;
+    if (tty) {
+      const auto stage = static_cast<sheetgen::Stage>(progress.stage.load());
+      const long long done = progress.discovery.iterations.load(), total = std::max(1LL, progress.discovery.total.load());
+      const int width = 30;
+      const int filled = stage >= sheetgen::Stage::Composition ? width : static_cast<int>(width * done / total);
+      std::fprintf(stderr, "\r  load %d/%d [%-*s] %-18s segments %3d  evaluated %4d  best %.1f cm^2   ", progress.load.load() + 1,
+                   progress.loads.load(), width, std::string(filled, '#').c_str(), sheetgen::to_string(stage),
+                   progress.discovery.segments.load(), progress.compose.evaluated.load(), progress.compose.best_cost.load() * 1e4);
+    }
+    std::this_thread::sleep_for(std::chrono::milliseconds(100));
+  }
+  worker.join();
+  if (tty) std::fprintf(stderr, "\n");
+  if (failure) std::rethrow_exception(failure);
+  if (result.cancelled || g_interrupted.load()) {
+    std::fprintf(stderr, "sheetgen: interrupted; nothing was written\n");
+    return 130;
+  }
+  sheetgen::write_outputs(a.out, problem, result, a.problem);
+  for (const auto& l : result.loads) {
+    if (l.ok)
+      std::printf("%-20s ok  area %.1f cm^2  mass %.1f g  bends %d  compliance %.4g J (limit %.4g)  deflection %.3f mm  MS %.2f  %.1f s\n",
+                  l.load.c_str(), l.part.area * 1e4, l.part.area * problem.material.thickness * problem.material.density * 1e3,
+                  l.part.bends, l.part.fem.compliance, l.part.fem.compliance_limit, l.part.fem.deflection * 1e3,
+                  l.part.fem.margin_of_safety, l.total_seconds);
+    else
+      std::printf("%-20s no valid part: %s\n", l.load.c_str(), l.reason.c_str());
+  }
+  std::printf("wrote %s/result.json (%.1f s)\n", a.out.c_str(), result.seconds);
+  return result.all_ok() ? 0 : 2;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -152,6 +228,17 @@ int main(int argc, char** argv) {
   check->add_option("problem", check_path, "problem JSON (sheetgen-problem/1)")->required();
   check->add_flag("--env", check_env, "also build the environment (clearance field, rays) and print queries");
   check->add_option("--voxel-mm", voxel_mm, "clearance field voxel size in mm (default: automatic)");
+
+  SolveArgs solve_args;
+  auto* solve_cmd = app.add_subcommand("solve", "design a part for every load of a problem");
+  solve_cmd->add_option("problem", solve_args.problem, "problem JSON (sheetgen-problem/1)")->required();
+  solve_cmd->add_option("--out", solve_args.out, "output folder")->required();
+  solve_cmd->add_option("--seed", solve_args.seed, "random seed");
+  solve_cmd->add_option("--chains", solve_args.chains, "MCMC chains (M)")->check(CLI::Range(1, 1024));
+  solve_cmd->add_option("--iterations", solve_args.iterations, "iterations per chain (N)")->check(CLI::Range(1, 10000000));
+  solve_cmd->add_option("--beam", solve_args.beam, "beam width of the composition (B)")->check(CLI::Range(1, 4096));
+  solve_cmd->add_option("--threads", solve_args.threads, "worker threads (0 = all cores)")->check(CLI::Range(0, 1024));
+  solve_cmd->add_flag("--right-angles", solve_args.right_angles, "restrict bends to +-90 degrees and no skew (the expert's practice)");
 
   std::string ccx_result, ccx_load, ccx_out;
   auto* ccx = app.add_subcommand("export-ccx", "write one load's part as a CalculiX input deck");
@@ -175,6 +262,8 @@ int main(int argc, char** argv) {
         print_queries(p, options);
       }
       std::printf("ok\n");
+    } else if (*solve_cmd) {
+      return solve(solve_args);
     } else if (*ccx) {
       return export_ccx(ccx_result, ccx_load, ccx_out);
     }

@@ -353,6 +353,7 @@ void write_text_file(const std::string& path, const std::string& text) {
   std::ofstream f(path, std::ios::binary);
   if (!f) throw std::runtime_error("cannot open " + path + " for writing");
   f << text;
+  f.close();  // a full disk often shows only when the buffer is flushed
   if (!f) throw std::runtime_error("cannot write " + path);
 }
 

@@ -1,0 +1,247 @@
+#include "sheetgen/compose/composition.hpp"
+
+#include <tbb/enumerable_thread_specific.h>
+#include <tbb/parallel_for.h>
+#include <tbb/task_arena.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <map>
+#include <set>
+#include <sstream>
+
+#include "sheetgen/env/environment.hpp"
+#include "sheetgen/fem/fem_error.hpp"
+#include "sheetgen/fem/plate_mesher.hpp"
+#include "sheetgen/part/manufacturing_plan.hpp"
+#include "sheetgen/part/realisation.hpp"
+
+namespace sheetgen {
+
+namespace {
+
+std::string key_of(const std::vector<int>& ids) {
+  std::string k;
+  for (int id : ids) k += std::to_string(id) + ",";
+  return k;
+}
+
+// A segment with all its ancestors (a subset must be closed under parents).
+std::vector<int> closure(const SegmentLibrary& library, int id) {
+  std::vector<int> out;
+  for (const Segment* s = library.find(id); s; s = s->parent >= 0 ? library.find(s->parent) : nullptr) out.push_back(s->id);
+  std::sort(out.begin(), out.end());
+  return out;
+}
+
+std::vector<int> unite(const std::vector<int>& a, const std::vector<int>& b) {
+  std::vector<int> out;
+  std::set_union(a.begin(), a.end(), b.begin(), b.end(), std::back_inserter(out));
+  return out;
+}
+
+// How far a stiff-and-strong requirement is missed (0 = met).
+double violation(const Candidate& c, const Problem& problem) {
+  if (!c.analysed) return std::numeric_limits<double>::infinity();
+  double v = std::max(0.0, c.fem.compliance / c.fem.compliance_limit - 1.0);
+  v += std::max(0.0, problem.requirements.min_margin_of_safety - c.fem.margin_of_safety);
+  return v;
+}
+
+std::string percent(double x) {
+  std::ostringstream s;
+  s.precision(3);
+  s << x * 100 << " %";
+  return s.str();
+}
+
+}  // namespace
+
+Candidate evaluate_candidate(const Problem& problem, const Environment& env, int load_index, const Part& base,
+                             const SegmentLibrary& library, std::vector<int> segments, double element_size,
+                             double bend_cost, ShellSolver* solver) {
+  Candidate c;
+  std::sort(segments.begin(), segments.end());
+  c.segments = segments;
+  c.part = assemble_part(base, library, segments);
+  c.bends = c.part.bend_count();
+  const RealisedPart realised = realise(c.part);
+  ValidityOptions vo;
+  vo.stop_at_first = true;
+  const ValidityReport report = check_validity(c.part, realised, env, vo);
+  if (!report.valid()) {
+    c.reason = report.first_reason();
+    c.message = report.summary();
+    return c;
+  }
+  const SheetSpec spec = SheetSpec::from(problem);
+  const ManufacturingPlan plan = plan_manufacturing(c.part, spec);
+  c.area = plan.flat.area();
+  c.cost = c.area + bend_cost * c.bends;
+  if (!plan.ok()) {
+    c.reason = plan.status;
+    c.message = plan.message;
+    return c;
+  }
+  c.geometry_ok = true;
+  try {
+    PartModelOptions mo;
+    mo.element_size = element_size;
+    c.fem = analyse_part(problem, load_index, plate_geometry(c.part, realised), mo, solver);
+    c.analysed = true;
+  } catch (const FemError& e) {
+    c.fem_error = e.what();
+  }
+  return c;
+}
+
+ComposeResult compose_part(const Problem& problem, const Environment& env, int load_index, const Part& base,
+                           const SegmentLibrary& library, const ComposeOptions& options, ComposeProgress* progress) {
+  const auto start = std::chrono::steady_clock::now();
+  ComposeResult result;
+  const int n = library.size();
+  // The search mesh: coarser than the final one, the answer is re-checked at the default size.
+  double search_h = options.search_element_size;
+  if (!(search_h > 0)) search_h = 0;  // resolved per candidate below from the part's own default
+
+  std::map<std::string, int> seen;  // subset key -> index in `all`
+  std::vector<Candidate> all;
+  const int threads = options.threads > 0 ? options.threads : tbb::this_task_arena::max_concurrency();
+  tbb::task_arena arena(threads);
+  tbb::enumerable_thread_specific<ShellSolver> solvers;
+
+  auto evaluate = [&](const std::vector<std::vector<int>>& subsets) {
+    std::vector<Candidate> out(subsets.size());
+    arena.execute([&] {
+      tbb::parallel_for(size_t(0), subsets.size(), [&](size_t i) {
+        if (progress && progress->cancel.load()) return;
+        Part probe = assemble_part(base, library, subsets[i]);
+        double h = search_h;
+        if (!(h > 0)) {
+          std::vector<std::vector<Vec3>> polys;
+          for (const auto& t : realise(probe).tabs) polys.push_back(t.corners);
+          h = 1.5 * default_element_size(polys, problem.material.thickness);
+        }
+        out[i] = evaluate_candidate(problem, env, load_index, base, library, subsets[i], h, options.bend_cost, &solvers.local());
+        if (progress) ++progress->evaluated;
+      });
+    });
+    std::vector<int> indices;
+    for (auto& c : out) {
+      result.fem_calls += c.analysed || !c.fem_error.empty();
+      indices.push_back(static_cast<int>(all.size()));
+      seen[key_of(c.segments)] = static_cast<int>(all.size());
+      all.push_back(std::move(c));
+    }
+    return indices;
+  };
+
+  auto better_closest = [&](const Candidate& c) {
+    const Candidate& b = result.closest;
+    if (b.segments.empty()) return true;
+    if (c.analysed != b.analysed) return c.analysed;
+    if (c.geometry_ok != b.geometry_ok) return c.geometry_ok;
+    const double vc = violation(c, problem), vb = violation(b, problem);
+    return vc != vb ? vc < vb : c.cost < b.cost;
+  };
+
+  // Level 1: every segment with its ancestors.
+  std::vector<std::vector<int>> frontier;
+  for (const Segment& s : library.segments()) {
+    auto sub = closure(library, s.id);
+    if (static_cast<int>(sub.size()) <= options.max_segments && !seen.count(key_of(sub))) {
+      seen[key_of(sub)] = -1;
+      frontier.push_back(sub);
+    }
+  }
+  for (int level = 1; !frontier.empty() && level <= options.max_segments; ++level) {
+    if (progress) progress->level = level;
+    const std::vector<int> fresh = evaluate(frontier);
+    if (progress && progress->cancel.load()) {
+      result.cancelled = true;
+      break;
+    }
+    for (int i : fresh) {
+      const Candidate& c = all[i];
+      if (c.valid()) result.valid.push_back(c);
+      if (c.valid() && (!result.found || c.cost < result.best.cost)) {
+        result.found = true;
+        result.best = c;
+        if (progress) progress->best_cost = c.cost;
+      }
+      if (!c.valid() && better_closest(c)) result.closest = c;
+    }
+    // The beam: analysed, not yet valid, still cheaper than the best valid part
+    // (adding segments only adds material), ranked by cost times how far off they are.
+    std::vector<int> beam;
+    for (int i : fresh) {
+      const Candidate& c = all[i];
+      if (!c.analysed || c.valid()) continue;
+      if (result.found && c.cost >= result.best.cost) continue;
+      beam.push_back(i);
+    }
+    std::stable_sort(beam.begin(), beam.end(), [&](int a, int b) {
+      const double sa = all[a].cost * std::pow(1.0 + violation(all[a], problem), 2);
+      const double sb = all[b].cost * std::pow(1.0 + violation(all[b], problem), 2);
+      return sa < sb;
+    });
+    if (static_cast<int>(beam.size()) > options.beam_width) beam.resize(options.beam_width);
+
+    ComposeHistoryRow row;
+    row.level = level;
+    row.evaluated = static_cast<int>(all.size());
+    row.found = result.found;
+    if (result.found) {
+      row.best_cost = result.best.cost;
+      row.best_area = result.best.area;
+      row.compliance = result.best.fem.compliance;
+      row.margin_of_safety = result.best.fem.margin_of_safety;
+    }
+    result.history.push_back(row);
+
+    frontier.clear();
+    for (int i : beam)
+      for (int s = 0; s < n; ++s) {
+        const int id = library.segments()[s].id;
+        if (std::binary_search(all[i].segments.begin(), all[i].segments.end(), id)) continue;
+        auto sub = unite(all[i].segments, closure(library, id));
+        if (static_cast<int>(sub.size()) > options.max_segments) continue;
+        const std::string k = key_of(sub);
+        if (seen.count(k)) continue;
+        seen[k] = -1;
+        frontier.push_back(sub);
+      }
+  }
+  result.candidates = static_cast<int>(all.size());
+  std::stable_sort(result.valid.begin(), result.valid.end(), [](const Candidate& a, const Candidate& b) { return a.cost < b.cost; });
+
+  if (!result.found) {
+    const Candidate& c = result.closest;
+    std::ostringstream why;
+    if (library.empty()) {
+      why << "no segment reached a rivet area (discovery found no connection from the load to any rivet area)";
+    } else if (c.segments.empty()) {
+      why << "no candidate could be evaluated";
+    } else if (!c.geometry_ok) {
+      why << "every combination of the " << n << " segments found is geometrically invalid; e.g. segments {"
+          << key_of(c.segments) << "}: " << c.message;
+    } else if (!c.analysed) {
+      why << "the structural model failed: " << c.fem_error;
+    } else {
+      why << "the best candidate (" << c.segments.size() << " segments, " << c.area * 1e4 << " cm^2, " << c.bends
+          << " bends)";
+      if (!c.fem.stiff_enough)
+        why << " has compliance " << c.fem.compliance << " J over the limit " << c.fem.compliance_limit << " J by "
+            << percent(c.fem.compliance / c.fem.compliance_limit - 1.0) << " (deflection " << c.fem.deflection * 1e3 << " mm)";
+      if (!c.fem.strong_enough)
+        why << (c.fem.stiff_enough ? "" : " and") << " has margin of safety " << c.fem.margin_of_safety << " below the required "
+            << problem.requirements.min_margin_of_safety << " (max von Mises " << c.fem.max_von_mises * 1e-6 << " MPa)";
+    }
+    result.reason = why.str();
+  }
+  result.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return result;
+}
+
+}  // namespace sheetgen

@@ -1,0 +1,84 @@
+#pragma once
+// Segment composition (paper Sec. 5.1, DESIGN.md "Composition"): a beam search
+// over subsets of the segment library that are closed under parents. Every
+// candidate is assembled, checked (self-intersection across segments,
+// environment, flat pattern, bend sequence), analysed by the shell FEM, and
+// scored cost = area + lambda * bends. The answer is the cheapest candidate that
+// is stiff and strong enough.
+#include <atomic>
+#include <string>
+#include <vector>
+
+#include "sheetgen/discovery/segment_library.hpp"
+#include "sheetgen/part/part.hpp"
+#include "sheetgen/part/validity.hpp"
+#include "sheetgen/structure/part_model.hpp"
+
+namespace sheetgen {
+
+class Environment;
+
+struct ComposeOptions {
+  int beam_width = 8;              // B: states kept per level (quality/time knob)
+  int max_segments = 6;            // segments in one part
+  double bend_cost = 2.0e-3;       // lambda, m^2 of material one bend is worth (about a 45 mm square)
+  double search_element_size = 0;  // m, FEM mesh during the search; <= 0: 1.5x the default size
+  bool self_rivet = true;          // try self-riveting when MS passes but compliance does not
+  int threads = 0;                 // 0 = all cores; results do not depend on it
+};
+
+// One evaluated subset.
+struct Candidate {
+  std::vector<int> segments;       // sorted ids, closed under parents
+  Part part;
+  bool geometry_ok = false;        // assembled part valid (tabs, clearance, self, flat, bends)
+  ValidityReason reason = ValidityReason::Ok;
+  std::string message;             // why not, when not
+  bool analysed = false;
+  StructuralResult fem;            // when analysed
+  std::string fem_error;           // the FEM's sentence when it could not solve
+  double area = 0;                 // m^2, flat-pattern material
+  int bends = 0;
+  double cost = 0;                 // m^2, area + lambda * bends
+  int self_rivets = 0;
+  bool valid() const { return geometry_ok && analysed && fem.stiff_enough && fem.strong_enough; }
+};
+
+struct ComposeHistoryRow {
+  int level = 0;                   // beam-search iteration (segments per candidate)
+  int evaluated = 0;               // candidates evaluated so far
+  bool found = false;              // a valid part exists so far
+  double best_cost = 0, best_area = 0, compliance = 0, margin_of_safety = 0;  // of the best so far
+};
+
+struct ComposeProgress {
+  std::atomic<int> level{0};
+  std::atomic<int> evaluated{0};
+  std::atomic<double> best_cost{0};  // m^2; 0 until a valid part is found
+  std::atomic<bool> cancel{false};
+};
+
+struct ComposeResult {
+  bool found = false;
+  Candidate best;                  // the cheapest valid candidate, when found
+  std::vector<Candidate> valid;    // every valid candidate found, cheapest first (the final check walks it)
+  Candidate closest;               // otherwise: the candidate nearest to valid (for the user's reason)
+  std::string reason;              // when not found: which constraint failed, by how much
+  std::vector<ComposeHistoryRow> history;
+  int fem_calls = 0;
+  int candidates = 0;
+  bool cancelled = false;
+  double seconds = 0;
+};
+
+ComposeResult compose_part(const Problem& problem, const Environment& env, int load_index, const Part& base,
+                           const SegmentLibrary& library, const ComposeOptions& options = {},
+                           ComposeProgress* progress = nullptr);
+
+// Evaluates one subset (exposed for tests and for the final check at the
+// default mesh): assembly, validity, flat pattern, bend sequence, FEM.
+Candidate evaluate_candidate(const Problem& problem, const Environment& env, int load_index, const Part& base,
+                             const SegmentLibrary& library, std::vector<int> segments, double element_size,
+                             double bend_cost, ShellSolver* solver = nullptr);
+
+}  // namespace sheetgen

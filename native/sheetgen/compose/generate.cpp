@@ -1,0 +1,290 @@
+#include "sheetgen/compose/generate.hpp"
+
+#include <chrono>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <thread>
+#include <unistd.h>
+
+#include "sheetgen/core/geometry.hpp"
+#include "sheetgen/env/environment.hpp"
+#include "sheetgen/part/exports.hpp"
+#include "sheetgen/structure/part_model.hpp"
+
+namespace sheetgen {
+
+namespace fs = std::filesystem;
+
+const char* to_string(Stage s) {
+  switch (s) {
+    case Stage::Idle: return "idle";
+    case Stage::Environment: return "environment";
+    case Stage::Discovery: return "discovery";
+    case Stage::Composition: return "composition";
+    case Stage::Plan: return "manufacturing plan";
+    case Stage::Done: return "done";
+  }
+  return "?";
+}
+
+bool GenerateResult::all_ok() const {
+  if (cancelled || loads.empty()) return false;
+  for (const auto& l : loads)
+    if (!l.ok) return false;
+  return true;
+}
+
+namespace {
+
+double seconds_since(std::chrono::steady_clock::time_point t) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t).count();
+}
+
+// A finished part as an obstacle for the loads after it: both faces of the
+// sheet (mid-surface +- t/2), so the next part keeps its clearance from the metal.
+EnvironmentMesh part_as_obstacle(const std::string& name, const RealisedPart& realised, double thickness) {
+  EnvironmentMesh m;
+  m.name = "part:" + name;
+  m.source = "<generated>";
+  for (const auto& tab : realised.tabs) {
+    for (double side : {-0.5, 0.5}) {
+      const int base = static_cast<int>(m.mesh.vertices.size());
+      for (const Vec3& c : tab.corners) m.mesh.vertices.push_back(c + side * thickness * tab.normal);
+      for (int k = 1; k + 1 < static_cast<int>(tab.corners.size()); ++k) m.mesh.triangles.push_back({base, base + k, base + k + 1});
+    }
+  }
+  return m;
+}
+
+// Watches the caller's cancel flag and forwards it to the stage that runs.
+struct CancelRelay {
+  GenerateProgress* p;
+  std::atomic<bool> done{false};
+  std::thread thread;
+  explicit CancelRelay(GenerateProgress* progress) : p(progress) {
+    if (!p) return;
+    thread = std::thread([this] {
+      while (!done.load()) {
+        if (p->cancel.load()) {
+          p->discovery.cancel = true;
+          p->compose.cancel = true;
+        }
+        std::this_thread::sleep_for(std::chrono::milliseconds(20));
+      }
+    });
+  }
+  ~CancelRelay() {
+    done = true;
+    if (thread.joinable()) thread.join();
+  }
+};
+
+}  // namespace
+
+GenerateResult generate(const Problem& input, const GenerateOptions& options, GenerateProgress* progress) {
+  const auto start = std::chrono::steady_clock::now();
+  GenerateResult result;
+  Problem problem = input;
+  if (options.chains) problem.search.chains = *options.chains;
+  if (options.iterations) problem.search.iterations = *options.iterations;
+  if (options.beam_width) problem.search.beam_width = *options.beam_width;
+  if (options.threads) problem.search.threads = *options.threads;
+  if (options.seed) problem.search.seed = *options.seed;
+  if (progress) progress->loads = static_cast<int>(problem.loads.size());
+  CancelRelay relay(progress);
+  auto cancelled = [&] { return progress && progress->cancel.load(); };
+
+  std::vector<EnvironmentMesh> earlier_parts;
+  for (int li = 0; li < static_cast<int>(problem.loads.size()); ++li) {
+    const auto load_start = std::chrono::steady_clock::now();
+    LoadOutcome out;
+    out.load = problem.loads[li].name;
+    if (progress) {
+      progress->load = li;
+      progress->stage = static_cast<int>(Stage::Environment);
+    }
+    Problem scene = problem;
+    for (const auto& m : earlier_parts) scene.meshes.push_back(m);
+    const Environment env(scene);
+    out.environment_seconds = seconds_since(load_start);
+    if (cancelled()) break;
+
+    // Discovery.
+    if (progress) progress->stage = static_cast<int>(Stage::Discovery);
+    DiscoveryOptions dopt = DiscoveryOptions::from(scene);
+    if (options.right_angles) {
+      dopt.prior.min_bend_angle = M_PI / 2;
+      dopt.prior.max_bend_angle = M_PI / 2;
+      dopt.prior.max_skew = 0;
+    }
+    auto t0 = std::chrono::steady_clock::now();
+    DiscoveryResult found = discover_segments(scene, env, li, dopt, progress ? &progress->discovery : nullptr);
+    out.discovery_seconds = seconds_since(t0);
+    out.discovery = found.stats;
+    out.library_size = found.library.size();
+    if (found.cancelled || cancelled()) {
+      result.cancelled = true;
+      break;
+    }
+
+    // Composition on the search mesh, then the final check at the default mesh
+    // down the list of valid candidates, cheapest first.
+    if (progress) progress->stage = static_cast<int>(Stage::Composition);
+    ComposeOptions copt = options.compose;
+    copt.beam_width = scene.search.beam_width;
+    copt.threads = scene.search.threads;
+    t0 = std::chrono::steady_clock::now();
+    ComposeResult composed = compose_part(scene, env, li, found.base, found.library, copt, progress ? &progress->compose : nullptr);
+    if (composed.cancelled || cancelled()) {
+      result.cancelled = true;
+      break;
+    }
+    out.history = composed.history;
+    out.fem_calls = composed.fem_calls;
+    bool final_ok = false;
+    std::string final_reason;
+    for (const Candidate& c : composed.valid) {
+      Candidate checked = evaluate_candidate(scene, env, li, found.base, found.library, c.segments, 0.0, copt.bend_cost);
+      ++out.fem_calls;
+      if (checked.valid()) {
+        out.part = checked;
+        final_ok = true;
+        break;
+      }
+      if (final_reason.empty() && checked.analysed)
+        final_reason = "at the default mesh the cheapest part misses its limits (compliance " + std::to_string(checked.fem.compliance) +
+                       " J, limit " + std::to_string(checked.fem.compliance_limit) + " J, MS " + std::to_string(checked.fem.margin_of_safety) + ")";
+    }
+    out.composition_seconds = seconds_since(t0);
+    if (final_ok) {
+      out.ok = true;
+    } else {
+      out.ok = false;
+      out.part = composed.found ? composed.valid.front() : composed.closest;
+      out.reason = composed.found ? final_reason : composed.reason;
+    }
+
+    // Manufacturing plan and rivets of the answer.
+    if (progress) progress->stage = static_cast<int>(Stage::Plan);
+    if (!out.part.segments.empty()) {
+      out.realised = realise(out.part.part);
+      out.plan = plan_manufacturing(out.part.part, SheetSpec::from(scene));
+      if (out.ok) {
+        const PartModel pm = build_part_model(scene, li, plate_geometry(out.part.part, out.realised));
+        out.rivets = pm.rivets;
+        earlier_parts.push_back(part_as_obstacle(out.load, out.realised, scene.material.thickness));
+      }
+    }
+    out.total_seconds = seconds_since(load_start);
+    result.loads.push_back(std::move(out));
+  }
+  if (progress) progress->stage = static_cast<int>(Stage::Done);
+  result.seconds = seconds_since(start);
+  return result;
+}
+
+nlohmann::json result_json(const Problem& problem, const GenerateResult& result, const std::string& problem_ref) {
+  using nlohmann::json;
+  auto v3 = [](const Vec3& p) { return json::array({p.x(), p.y(), p.z()}); };
+  json parts = json::array();
+  for (size_t i = 0; i < result.loads.size(); ++i) {
+    const LoadOutcome& o = result.loads[i];
+    json p;
+    p["load"] = o.load;
+    p["status"] = o.ok ? "ok" : "no_valid_part";
+    if (!o.ok) p["reason"] = o.reason;
+    const Candidate& c = o.part;
+    p["segments"] = c.segments;
+    if (!c.segments.empty()) {
+      p["area_m2"] = c.area;
+      p["mass_kg"] = c.area * problem.material.thickness * problem.material.density;
+      p["bends"] = c.bends;
+      p["cost_m2"] = c.cost;
+      if (c.analysed) {
+        p["compliance"] = c.fem.compliance;
+        p["compliance_limit"] = c.fem.compliance_limit;
+        p["deflection_m"] = c.fem.deflection;
+        p["max_von_mises_pa"] = c.fem.max_von_mises;
+        p["margin_of_safety"] = c.fem.margin_of_safety;
+        p["fem_elements"] = c.fem.elements;
+      }
+      p["tabs"] = part_json(c.part, o.realised);
+      json rivets = json::array();
+      for (const Vec3& r : o.rivets) rivets.push_back(v3(r));
+      p["rivets"] = rivets;
+      p["self_rivets"] = json::array();
+      p["bend_sequence"] = o.plan.sequence.order;
+      p["flat_pattern"] = flat_pattern_json(o.plan.flat, o.plan.sequence.order);
+    }
+    json history = json::array();
+    for (const auto& h : o.history)
+      history.push_back({{"iteration", h.level}, {"evaluated", h.evaluated}, {"found", h.found}, {"best_cost_m2", h.best_cost},
+                         {"best_area_m2", h.best_area}, {"compliance", h.compliance}, {"margin_of_safety", h.margin_of_safety}});
+    p["history"] = history;
+    p["library_segments"] = o.library_size;
+    p["fem_calls"] = o.fem_calls;
+    p["timing"] = {{"environment_s", o.environment_seconds}, {"discovery_s", o.discovery_seconds},
+                   {"composition_s", o.composition_seconds}, {"total_s", o.total_seconds}};
+    parts.push_back(p);
+  }
+  json doc;
+  doc["format"] = "sheetgen-result/1";
+  doc["problem"] = problem_ref;
+  doc["parts"] = parts;
+  doc["search"] = {{"chains", problem.search.chains}, {"iterations", problem.search.iterations},
+                   {"beam_width", problem.search.beam_width}, {"seed", problem.search.seed}};
+  doc["timing"] = {{"total_s", result.seconds}};
+  return doc;
+}
+
+namespace {
+
+std::string history_csv(const LoadOutcome& o) {
+  std::ostringstream s;
+  s.precision(10);
+  s << "iteration,evaluated,found,best_cost_m2,best_area_m2,compliance_J,margin_of_safety\n";
+  for (const auto& h : o.history)
+    s << h.level << ',' << h.evaluated << ',' << (h.found ? 1 : 0) << ',' << h.best_cost << ',' << h.best_area << ','
+      << h.compliance << ',' << h.margin_of_safety << '\n';
+  return s.str();
+}
+
+}  // namespace
+
+void write_outputs(const std::string& dir, const Problem& problem, const GenerateResult& result, const std::string& problem_path) {
+  const fs::path out = fs::u8path(dir);
+  std::error_code ec;
+  fs::create_directories(out, ec);
+  if (ec) throw std::runtime_error(dir + ": cannot create the output folder (" + ec.message() + ")");
+  const fs::path staging = out / (".sheetgen-staging-" + std::to_string(::getpid()));
+  fs::remove_all(staging, ec);
+  try {
+    fs::create_directories(staging);
+    for (const LoadOutcome& o : result.loads) {
+      const fs::path ld = staging / fs::u8path(o.load);
+      fs::create_directories(ld);
+      if (o.ok) write_manufacturing_files(ld.u8string(), o.realised, o.plan);
+      write_text_file((ld / "history.csv").u8string(), history_csv(o));
+    }
+    // result.json names the problem relative to itself.
+    std::string ref = problem_path;
+    const fs::path rel = fs::relative(fs::absolute(fs::u8path(problem_path)), fs::absolute(out), ec);
+    if (!ec && !rel.empty()) ref = rel.u8string();
+    write_text_file((staging / "result.json").u8string(), result_json(problem, result, ref).dump(2) + "\n");
+    // Move into place: load folders first, result.json last (its presence means the run finished).
+    for (const LoadOutcome& o : result.loads) {
+      const fs::path target = out / fs::u8path(o.load);
+      fs::remove_all(target);
+      fs::rename(staging / fs::u8path(o.load), target);
+    }
+    fs::rename(staging / "result.json", out / "result.json");
+    fs::remove_all(staging);
+  } catch (const std::exception& e) {
+    fs::remove_all(staging, ec);
+    throw std::runtime_error(std::string("writing the results failed: ") + e.what());
+  }
+}
+
+}  // namespace sheetgen

@@ -1,0 +1,76 @@
+#pragma once
+// The whole pipeline for every load of a problem (DESIGN.md "Pipeline"):
+// environment -> segment discovery -> segment composition -> final check at the
+// default mesh -> manufacturing plan. Parts of earlier loads become obstacles
+// for later ones. Progress and cancel through one object another thread reads
+// and sets.
+#include <atomic>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "sheetgen/compose/composition.hpp"
+#include "sheetgen/core/problem.hpp"
+#include "sheetgen/discovery/discovery.hpp"
+#include "sheetgen/part/manufacturing_plan.hpp"
+
+namespace sheetgen {
+
+struct GenerateOptions {
+  // Overrides of the problem's search settings (unset: the problem's value).
+  std::optional<int> chains, iterations, beam_width, threads;
+  std::optional<std::uint64_t> seed;
+  bool right_angles = false;   // the expert's practice: theta3 = +-90 deg, no skew (--right-angles)
+  ComposeOptions compose;      // beam_width and threads are taken from the settings above
+};
+
+enum class Stage : int { Idle = 0, Environment, Discovery, Composition, Plan, Done };
+const char* to_string(Stage s);
+
+struct GenerateProgress {
+  std::atomic<int> stage{0};          // Stage
+  std::atomic<int> load{0};           // index of the load being worked on
+  std::atomic<int> loads{0};          // how many
+  DiscoveryProgress discovery;        // iterations / total of the current load
+  ComposeProgress compose;            // level, evaluated, best cost
+  std::atomic<bool> cancel{false};    // set from any thread; honoured within a second
+};
+
+struct LoadOutcome {
+  std::string load;
+  bool ok = false;
+  std::string reason;                 // when not ok: what failed, by how much
+  Candidate part;                     // the answer (checked at the default mesh) or the closest candidate
+  RealisedPart realised;
+  ManufacturingPlan plan;
+  std::vector<Vec3> rivets;           // m, rivet centres
+  std::vector<ComposeHistoryRow> history;
+  DiscoveryStats discovery;
+  int library_size = 0;
+  int fem_calls = 0;
+  double environment_seconds = 0, discovery_seconds = 0, composition_seconds = 0, total_seconds = 0;
+};
+
+struct GenerateResult {
+  std::vector<LoadOutcome> loads;
+  bool cancelled = false;
+  double seconds = 0;
+  bool all_ok() const;
+};
+
+GenerateResult generate(const Problem& problem, const GenerateOptions& options = {}, GenerateProgress* progress = nullptr);
+
+// "sheetgen-result/1" (DESIGN.md "Interfaces"); `problem_ref` is stored as
+// "problem" (a path relative to the result file) so export-ccx can rebuild loads.
+nlohmann::json result_json(const Problem& problem, const GenerateResult& result, const std::string& problem_ref);
+
+// Writes DIR/result.json and per load DIR/<load>/{part.obj, flat.dxf, flat.svg,
+// bends.csv, history.csv}. Everything is written under temporary names first
+// and renamed into place at the end, so a failed or cancelled run never leaves
+// files claiming success. Throws std::runtime_error naming the file on failure.
+void write_outputs(const std::string& dir, const Problem& problem, const GenerateResult& result,
+                   const std::string& problem_path);
+
+}  // namespace sheetgen

@@ -1,0 +1,266 @@
+#!/usr/bin/python3
+"""Checks the parts of a `sheetgen solve` output folder with tools independent of
+the code that made them (issue 6 acceptance):
+
+* clearance: every tab sampled every 1.5 mm, brute-force point-triangle
+  distance (numpy) to every environment triangle and load box, except the
+  documented allowed contacts (a flange on its own rivet area, the base tab on
+  its own load, and the bend zone next to each: docs/grammar.md);
+* every rivet flange lies on its rivet area: its samples are t/2 from the
+  area's faces and project inside them;
+* compliance and load deflection re-computed by CalculiX (`ccx`) on the deck
+  `sheetgen export-ccx` writes: C = sum of *CLOAD values times ccx's
+  displacements, within 5 % of result.json, and within the limit (+5 %);
+* the DXF's CUT outline, read by ezdxf, is one simple closed polygon (shapely)
+  whose area equals the flat-pattern area in result.json.
+
+Usage: verify_result.py OUT_DIR [--sheetgen build/native/cli/sheetgen] [--no-ccx]
+Exits 1 with one line per failure; prints the measured numbers.
+"""
+import argparse
+import json
+import math
+import os
+import re
+import subprocess
+import sys
+import tempfile
+
+import ezdxf
+import numpy as np
+from shapely.geometry import Polygon
+
+
+def read_obj(path):
+    verts, tris = [], []
+    with open(path) as f:
+        for line in f:
+            p = line.split()
+            if not p:
+                continue
+            if p[0] == "v":
+                verts.append([float(x) for x in p[1:4]])
+            elif p[0] == "f":
+                idx = [int(x.split("/")[0]) for x in p[1:]]
+                idx = [i - 1 if i > 0 else len(verts) + i for i in idx]
+                for k in range(1, len(idx) - 1):
+                    tris.append([idx[0], idx[k], idx[k + 1]])
+    return np.array(verts, float), np.array(tris, int)
+
+
+def load_problem(path):
+    prob = json.load(open(path))
+    base = os.path.dirname(path)
+    meshes = {}
+    for m in prob["environment"]["meshes"]:
+        if "file" in m:
+            meshes[m["name"]] = read_obj(os.path.join(base, m["file"]))
+        else:
+            meshes[m["name"]] = (np.array(m["vertices"], float), np.array(m["triangles"], int))
+    return prob, meshes
+
+
+def point_triangle_distance(P, A, B, C):
+    """Distances from points P (n,3) to triangles (m,3 each): (n, m). Ericson's regions, vectorised."""
+    P = P[:, None, :]
+    ab, ac, ap = B - A, C - A, P - A
+    d1, d2 = (ab * ap).sum(-1), (ac * ap).sum(-1)
+    bp = P - B
+    d3, d4 = (ab * bp).sum(-1), (ac * bp).sum(-1)
+    cp = P - C
+    d5, d6 = (ab * cp).sum(-1), (ac * cp).sum(-1)
+    va = d3 * d6 - d5 * d4
+    vb = d5 * d2 - d1 * d6
+    vc = d1 * d4 - d3 * d2
+    with np.errstate(divide="ignore", invalid="ignore"):
+        denom = va + vb + vc
+        v = vb / denom
+        w = vc / denom
+        q = A + v[..., None] * ab + w[..., None] * ac  # interior
+        t_ab = np.clip(d1 / (d1 - d3), 0, 1)
+        t_ac = np.clip(d2 / (d2 - d6), 0, 1)
+        t_bc = np.clip((d4 - d3) / ((d4 - d3) + (d5 - d6)), 0, 1)
+    q = np.where(((vc <= 0) & (d1 >= 0) & (d3 <= 0))[..., None], A + t_ab[..., None] * ab, q)
+    q = np.where(((vb <= 0) & (d2 >= 0) & (d6 <= 0))[..., None], A + t_ac[..., None] * ac, q)
+    q = np.where(((va <= 0) & ((d4 - d3) >= 0) & ((d5 - d6) >= 0))[..., None], B + t_bc[..., None] * (C - B), q)
+    q = np.where(((d1 <= 0) & (d2 <= 0))[..., None], A, q)
+    q = np.where(((d3 >= 0) & (d4 <= d3))[..., None], B, q)
+    q = np.where(((d6 >= 0) & (d5 <= d6))[..., None], C, q)
+    return np.linalg.norm(P - q, axis=-1)
+
+
+def box_distance(P, load):
+    w, x, y, z = load.get("rotation", [1, 0, 0, 0])
+    n = math.sqrt(w * w + x * x + y * y + z * z)
+    w, x, y, z = w / n, x / n, y / n, z / n
+    R = np.array([[1 - 2 * (y * y + z * z), 2 * (x * y - w * z), 2 * (x * z + w * y)],
+                  [2 * (x * y + w * z), 1 - 2 * (x * x + z * z), 2 * (y * z - w * x)],
+                  [2 * (x * z - w * y), 2 * (y * z + w * x), 1 - 2 * (x * x + y * y)]])
+    local = (P - np.array(load["center"])) @ R
+    q = np.abs(local) - 0.5 * np.array(load["size"])
+    outside = np.linalg.norm(np.maximum(q, 0), axis=1)
+    inside = np.minimum(q.max(axis=1), 0)
+    return outside + inside
+
+
+def sample_polygon(corners, spacing):
+    """Points covering a convex polygon: a fan of triangles, each sampled on a barycentric grid."""
+    pts = []
+    c = np.array(corners)
+    for k in range(1, len(c) - 1):
+        a, b, d = c[0], c[k], c[k + 1]
+        n = max(2, int(math.ceil(max(np.linalg.norm(b - a), np.linalg.norm(d - a), np.linalg.norm(d - b)) / spacing)))
+        for i in range(n + 1):
+            for j in range(n + 1 - i):
+                pts.append(a + (b - a) * i / n + (d - a) * j / n)
+    return np.array(pts)
+
+
+def distance_to_segment(P, a, b):
+    ab = b - a
+    t = np.clip(((P - a) @ ab) / max(ab @ ab, 1e-300), 0, 1)
+    return np.linalg.norm(P - (a + t[:, None] * ab), axis=1)
+
+
+def check_part(out_dir, prob, meshes, part, args, report, bad):
+    t = prob.get("material", {}).get("thickness", 1.6e-3)
+    clearance = prob.get("requirements", {}).get("clearance", 1.0e-3)
+    R = prob.get("manufacturing", {}).get("bend_radius", 4 * t)
+    name = part["load"]
+    load_index = [l["name"] for l in prob["loads"]].index(name)
+    tabs = part["tabs"]
+    required = 0.5 * t + clearance
+    # Sampling misses at most half the spacing; the tool guarantees required - h/4 (docs/environment.md).
+    spacing = 1.5e-3
+    tolerance = 0.5 * 1.6e-3
+    band = R + t + 0.5 * t + 1e-4  # allowed-contact zone next to the bend into a contact (docs/grammar.md), generous
+    ra_faces = {}
+    for i, ra in enumerate(prob["rivet_areas"]):
+        ra_faces[i] = (ra["mesh"] if isinstance(ra["mesh"], str) else prob["environment"]["meshes"][ra["mesh"]]["name"], set(ra["faces"]))
+    worst = (math.inf, None)
+    for ti, tab in enumerate(tabs):
+        P = sample_polygon(tab["corners"], spacing)
+        own_ra = tab.get("rivet_area", -1)
+        children = [k for k, tb in enumerate(tabs) if tb["parent"] == ti]
+        d_min = np.full(len(P), np.inf)
+        for mname, (V, F) in meshes.items():
+            keep = np.ones(len(F), bool)
+            for ra, (rm, faces) in ra_faces.items():
+                if rm != mname:
+                    continue
+                allow = ra == own_ra
+                # The parent of a flange may come near the flange's rivet area inside the bend zone.
+                near = [k for k in children if tabs[k].get("rivet_area", -1) == ra]
+                if allow:
+                    keep[list(faces)] = False
+                elif near:
+                    k = near[0]
+                    c = np.array(tabs[k]["corners"])
+                    zone = distance_to_segment(P, c[0], c[1]) < band
+                    Fr = F[list(faces)]
+                    d_ra = point_triangle_distance(P[~zone], V[Fr[:, 0]], V[Fr[:, 1]], V[Fr[:, 2]]).min(axis=1) if (~zone).any() else []
+                    if len(d_ra):
+                        d_min[~zone] = np.minimum(d_min[~zone], d_ra)
+                    keep[list(faces)] = False
+            Fk = F[keep]
+            if len(Fk):
+                for s in range(0, len(P), 256):
+                    d = point_triangle_distance(P[s:s + 256], V[Fk[:, 0]], V[Fk[:, 1]], V[Fk[:, 2]]).min(axis=1)
+                    d_min[s:s + 256] = np.minimum(d_min[s:s + 256], d)
+        for li, load in enumerate(prob["loads"]):
+            d = box_distance(P, load)
+            if li == load_index and ti == 0:
+                continue  # the base tab carries its own load
+            if li == load_index and tab["parent"] == 0:
+                c = np.array(tab["corners"])
+                d = np.where(distance_to_segment(P, c[0], c[1]) < band, np.inf, d)
+            d_min = np.minimum(d_min, d)
+        i = int(np.argmin(d_min))
+        if d_min[i] < worst[0]:
+            worst = (float(d_min[i]), (ti, P[i].tolist()))
+        if d_min[i] < required - tolerance:
+            bad.append(f"{name}: tab {ti} is {d_min[i] * 1e3:.3f} mm from an obstacle at {np.round(P[i], 4).tolist()} "
+                       f"(required {required * 1e3:.2f} mm)")
+        if own_ra >= 0:
+            mname, faces = ra_faces[own_ra]
+            V, F = meshes[mname]
+            Fr = F[sorted(faces)]
+            d = point_triangle_distance(P, V[Fr[:, 0]], V[Fr[:, 1]], V[Fr[:, 2]]).min(axis=1)
+            off = np.abs(d - 0.5 * t).max()
+            report.append(f"{name}: flange tab {ti} on rivet area {prob['rivet_areas'][own_ra]['name']}: max |distance - t/2| = {off * 1e3:.4f} mm")
+            if off > 0.1e-3:
+                bad.append(f"{name}: flange tab {ti} is not flush on its rivet area (off by {off * 1e3:.3f} mm)")
+    report.append(f"{name}: min clearance {worst[0] * 1e3:.3f} mm (required {required * 1e3:.2f} mm) at tab {worst[1][0]}")
+
+    # CalculiX on the exported deck.
+    if not args.no_ccx:
+        with tempfile.TemporaryDirectory() as tmp:
+            deck = os.path.join(tmp, "part.inp")
+            subprocess.run([args.sheetgen, "export-ccx", os.path.join(out_dir, "result.json"), "--load", name, "--out", deck],
+                           check=True, stdout=subprocess.DEVNULL)
+            subprocess.run(["ccx", "-i", "part"], cwd=tmp, check=True, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+            text = open(deck).read()
+            cloads = [(int(a), int(b), float(c)) for a, b, c in re.findall(r"^\s*(\d+)\s*,\s*(\d+)\s*,\s*([-+0-9.eE]+)\s*$",
+                                                                              text.split("*CLOAD")[1].split("*")[0], re.M)]
+            ref = int(re.search(r"REF NODE=(\d+)", text).group(1))
+            disp = {}
+            dat = open(os.path.join(tmp, "part.dat")).read()
+            block = dat.split("displacements (vx,vy,vz)")[-1]
+            for line in block.splitlines():
+                p = line.split()
+                if len(p) == 4 and p[0].isdigit():
+                    disp[int(p[0])] = [float(x) for x in p[1:]]
+            C = sum(v * disp[n][d - 1] for n, d, v in cloads)
+            deflection = float(np.linalg.norm(disp[ref]))
+        c_ours, d_ours, limit = part["compliance"], part["deflection_m"], part["compliance_limit"]
+        report.append(f"{name}: compliance ours {c_ours:.5g} J, CalculiX {C:.5g} J ({(c_ours / C - 1) * 100:+.2f} %); "
+                      f"deflection ours {d_ours * 1e3:.4f} mm, CalculiX {deflection * 1e3:.4f} mm; limit {limit:.4g} J")
+        if abs(c_ours / C - 1) > 0.05:
+            bad.append(f"{name}: compliance differs from CalculiX by {(c_ours / C - 1) * 100:.1f} %")
+        if C > 1.05 * limit:
+            bad.append(f"{name}: CalculiX compliance {C:.4g} J exceeds the limit {limit:.4g} J")
+
+    # DXF outline.
+    doc = ezdxf.readfile(os.path.join(out_dir, name, "flat.dxf"))
+    outlines = [e for e in doc.modelspace() if e.dxf.layer == "CUT" and e.dxftype() in ("POLYLINE", "LWPOLYLINE")]
+    if len(outlines) != 1:
+        bad.append(f"{name}: {len(outlines)} outlines on CUT, want 1")
+    else:
+        pts = [(v.dxf.location.x, v.dxf.location.y) for v in outlines[0].vertices]
+        closed = outlines[0].is_closed
+        poly = Polygon(pts)
+        area_mm2 = part["area_m2"] * 1e6
+        report.append(f"{name}: DXF outline {len(pts)} vertices, closed {closed}, simple {poly.is_valid}, "
+                      f"area {poly.area:.3f} mm^2 vs result {area_mm2:.3f} mm^2")
+        if not closed or not poly.is_valid:
+            bad.append(f"{name}: DXF outline is not a simple closed polygon")
+        if abs(poly.area - area_mm2) > 1e-6 * area_mm2:
+            bad.append(f"{name}: DXF area {poly.area:.3f} mm^2 differs from result.json {area_mm2:.3f} mm^2")
+
+
+def main():
+    ap = argparse.ArgumentParser()
+    ap.add_argument("out_dir")
+    ap.add_argument("--sheetgen", default=os.path.join(os.path.dirname(__file__), "..", "..", "build", "native", "cli", "sheetgen"))
+    ap.add_argument("--no-ccx", action="store_true")
+    ap.add_argument("--allow-no-part", action="store_true", help="do not fail on loads without a valid part")
+    args = ap.parse_args()
+    result = json.load(open(os.path.join(args.out_dir, "result.json")))
+    prob_path = os.path.normpath(os.path.join(args.out_dir, result["problem"]))
+    prob, meshes = load_problem(prob_path)
+    report, bad = [], []
+    for part in result["parts"]:
+        if part["status"] != "ok":
+            (report if args.allow_no_part else bad).append(f"{part['load']}: no valid part: {part.get('reason')}")
+            continue
+        check_part(args.out_dir, prob, meshes, part, args, report, bad)
+    for line in report:
+        print(line)
+    for line in bad:
+        print("FAIL:", line)
+    print("verify_result: %d passed, %d failed" % (len(result["parts"]) - len({b.split(':')[0] for b in bad}), len({b.split(':')[0] for b in bad})))
+    sys.exit(1 if bad else 0)
+
+
+if __name__ == "__main__":
+    main()
