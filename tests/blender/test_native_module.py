@@ -61,3 +61,50 @@ class NativeModuleInBlender(unittest.TestCase):
 
 if __name__ == "__main__":
     unittest.main()
+
+
+class GenerateInBlender(unittest.TestCase):
+    """generate() inside Blender: releases the GIL, reports progress, cancels within a second."""
+
+    def test_generate_reports_progress_and_result(self):
+        import json
+        import threading
+        import time
+        sg = native()
+        p = sg.load_problem(os.path.join(ROOT, "sample_scenes", "corner", "problem.json"))
+        progress = sg.GenerateProgress()
+        box = {}
+        worker = threading.Thread(target=lambda: box.setdefault("r", sg.generate(p, progress, seed=3, chains=4, iterations=150)))
+        worker.start()
+        ticks = 0
+        while worker.is_alive():  # the GIL is free: this loop runs while the solver works
+            ticks += 1
+            time.sleep(0.05)
+        worker.join()
+        self.assertGreater(ticks, 5)
+        self.assertEqual(progress.stage, "done")
+        self.assertEqual(progress.total_iterations, 4 * 150)
+        doc = json.loads(sg.result_json(p, box["r"], "problem.json"))
+        self.assertEqual(doc["format"], "sheetgen-result/1")
+        self.assertEqual([part["load"] for part in doc["parts"]], ["avionics_box"])
+        self.assertIn(doc["parts"][0]["status"], ("ok", "no_valid_part"))
+
+    def test_cancel_returns_within_a_second(self):
+        import threading
+        import time
+        sg = native()
+        p = sg.load_problem(os.path.join(ROOT, "sample_scenes", "corner", "problem.json"))
+        progress = sg.GenerateProgress()
+        box = {}
+        worker = threading.Thread(target=lambda: box.setdefault("r", sg.generate(p, progress)))
+        worker.start()
+        time.sleep(1.5)
+        self.assertTrue(worker.is_alive())
+        t0 = time.monotonic()
+        progress.cancel()
+        worker.join(timeout=5)
+        waited = time.monotonic() - t0
+        self.assertFalse(worker.is_alive())
+        self.assertLess(waited, 1.0)
+        self.assertTrue(box["r"].cancelled)
+        self.assertFalse(box["r"].all_ok)
