@@ -1,4 +1,5 @@
 #include "sheetgen/compose/composition.hpp"
+#include "sheetgen/compose/self_rivet.hpp"
 
 #include <tbb/enumerable_thread_specific.h>
 #include <tbb/parallel_for.h>
@@ -58,13 +59,13 @@ std::string percent(double x) {
 
 }  // namespace
 
-Candidate evaluate_candidate(const Problem& problem, const Environment& env, int load_index, const Part& base,
-                             const SegmentLibrary& library, std::vector<int> segments, double element_size,
-                             double bend_cost, ShellSolver* solver) {
-  Candidate c;
-  std::sort(segments.begin(), segments.end());
-  c.segments = segments;
-  c.part = assemble_part(base, library, segments);
+Candidate evaluate_part(const Problem& problem, const Environment& env, int load_index, Candidate c, double element_size,
+                        double bend_cost, ShellSolver* solver) {
+  c.geometry_ok = false;
+  c.analysed = false;
+  c.fem_error.clear();
+  c.reason = ValidityReason::Ok;
+  c.message.clear();
   c.bends = c.part.bend_count();
   const RealisedPart realised = realise(c.part);
   ValidityOptions vo;
@@ -88,6 +89,7 @@ Candidate evaluate_candidate(const Problem& problem, const Environment& env, int
   try {
     PartModelOptions mo;
     mo.element_size = element_size;
+    mo.self_rivets = c.self_rivets;
     c.fem = analyse_part(problem, load_index, plate_geometry(c.part, realised), mo, solver);
     c.analysed = true;
   } catch (const FemError& e) {
@@ -95,6 +97,38 @@ Candidate evaluate_candidate(const Problem& problem, const Environment& env, int
   }
   return c;
 }
+
+Candidate evaluate_candidate(const Problem& problem, const Environment& env, int load_index, const Part& base,
+                             const SegmentLibrary& library, std::vector<int> segments, double element_size,
+                             double bend_cost, ShellSolver* solver) {
+  Candidate c;
+  std::sort(segments.begin(), segments.end());
+  c.segments = segments;
+  c.part = assemble_part(base, library, segments);
+  return evaluate_part(problem, env, load_index, std::move(c), element_size, bend_cost, solver);
+}
+
+namespace {
+
+// Gusset variants of a part that is strong but not stiff enough (Sec. 5.2):
+// for the most promising visible edge pairs, the lightest gussets that fit.
+std::vector<Candidate> self_rivet_variants(const Problem& problem, const Candidate& c) {
+  std::vector<Candidate> out;
+  const RealisedPart rp = realise(c.part);
+  for (const VisiblePair& pair : visible_edge_pairs(c.part, rp, problem.material.thickness)) {
+    const auto plans = gusset_plans(c.part, rp, pair, problem);
+    for (size_t k = 0; k < plans.size() && k < 2; ++k) {
+      Candidate v = c;
+      v.part = plans[k].part;
+      for (size_t r = 0; r < plans[k].rivets_a.size(); ++r)
+        v.self_rivets.push_back(SelfRivetTie{plans[k].tab_a, plans[k].tab_b, plans[k].rivets_a[r], plans[k].rivets_b[r]});
+      out.push_back(std::move(v));
+    }
+  }
+  return out;
+}
+
+}  // namespace
 
 ComposeResult compose_part(const Problem& problem, const Environment& env, int load_index, const Part& base,
                            const SegmentLibrary& library, const ComposeOptions& options, ComposeProgress* progress) {
@@ -187,6 +221,39 @@ ComposeResult compose_part(const Problem& problem, const Environment& env, int l
       return sa < sb;
     });
     if (static_cast<int>(beam.size()) > options.beam_width) beam.resize(options.beam_width);
+
+    // Self-riveting where the margin of safety passes but compliance does not.
+    if (options.self_rivet) {
+      std::vector<Candidate> variants;
+      for (int i : beam) {
+        const Candidate& c = all[i];
+        if (!c.fem.strong_enough || c.fem.stiff_enough || !c.self_rivets.empty()) continue;
+        for (Candidate& v : self_rivet_variants(problem, c)) variants.push_back(std::move(v));
+      }
+      std::vector<Candidate> checked(variants.size());
+      arena.execute([&] {
+        tbb::parallel_for(size_t(0), variants.size(), [&](size_t k) {
+          if (progress && progress->cancel.load()) return;
+          std::vector<std::vector<Vec3>> polys;
+          for (const auto& t : realise(variants[k].part).tabs) polys.push_back(t.corners);
+          const double h = search_h > 0 ? search_h : 1.5 * default_element_size(polys, problem.material.thickness);
+          checked[k] = evaluate_part(problem, env, load_index, variants[k], h, options.bend_cost, &solvers.local());
+          if (progress) ++progress->evaluated;
+        });
+      });
+      for (Candidate& v : checked) {
+        result.fem_calls += v.analysed || !v.fem_error.empty();
+        ++result.self_rivet_candidates;
+        if (v.valid()) {
+          result.valid.push_back(v);
+          if (!result.found || v.cost < result.best.cost) {
+            result.found = true;
+            result.best = v;
+            if (progress) progress->best_cost = v.cost;
+          }
+        }
+      }
+    }
 
     ComposeHistoryRow row;
     row.level = level;

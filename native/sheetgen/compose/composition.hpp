@@ -40,7 +40,7 @@ struct Candidate {
   double area = 0;                 // m^2, flat-pattern material
   int bends = 0;
   double cost = 0;                 // m^2, area + lambda * bends
-  int self_rivets = 0;
+  std::vector<SelfRivetTie> self_rivets;  // gusset rivets (paper Sec. 5.2), tied in the FEM
   bool valid() const { return geometry_ok && analysed && fem.stiff_enough && fem.strong_enough; }
 };
 
@@ -67,6 +67,7 @@ struct ComposeResult {
   std::vector<ComposeHistoryRow> history;
   int fem_calls = 0;
   int candidates = 0;
+  int self_rivet_candidates = 0;   // gusset variants evaluated
   bool cancelled = false;
   double seconds = 0;
 };
@@ -75,10 +76,15 @@ ComposeResult compose_part(const Problem& problem, const Environment& env, int l
                            const SegmentLibrary& library, const ComposeOptions& options = {},
                            ComposeProgress* progress = nullptr);
 
-// Evaluates one subset (exposed for tests and for the final check at the
-// default mesh): assembly, validity, flat pattern, bend sequence, FEM.
+// Evaluates one subset (exposed for tests): assembly, validity, flat pattern,
+// bend sequence, FEM. element_size <= 0: the default mesh.
 Candidate evaluate_candidate(const Problem& problem, const Environment& env, int load_index, const Part& base,
                              const SegmentLibrary& library, std::vector<int> segments, double element_size,
                              double bend_cost, ShellSolver* solver = nullptr);
+
+// Re-evaluates a candidate's own part (with its self-rivets), e.g. at the
+// default mesh for the final check.
+Candidate evaluate_part(const Problem& problem, const Environment& env, int load_index, Candidate candidate,
+                        double element_size, double bend_cost, ShellSolver* solver = nullptr);
 
 }  // namespace sheetgen

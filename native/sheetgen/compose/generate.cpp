@@ -143,10 +143,11 @@ GenerateResult generate(const Problem& input, const GenerateOptions& options, Ge
     }
     out.history = composed.history;
     out.fem_calls = composed.fem_calls;
+    out.self_rivet_candidates = composed.self_rivet_candidates;
     bool final_ok = false;
     std::string final_reason;
     for (const Candidate& c : composed.valid) {
-      Candidate checked = evaluate_candidate(scene, env, li, found.base, found.library, c.segments, 0.0, copt.bend_cost);
+      Candidate checked = evaluate_part(scene, env, li, c, 0.0, copt.bend_cost);
       ++out.fem_calls;
       if (checked.valid()) {
         out.part = checked;
@@ -172,7 +173,9 @@ GenerateResult generate(const Problem& input, const GenerateOptions& options, Ge
       out.realised = realise(out.part.part);
       out.plan = plan_manufacturing(out.part.part, SheetSpec::from(scene));
       if (out.ok) {
-        const PartModel pm = build_part_model(scene, li, plate_geometry(out.part.part, out.realised));
+        PartModelOptions mo;
+        mo.self_rivets = out.part.self_rivets;
+        const PartModel pm = build_part_model(scene, li, plate_geometry(out.part.part, out.realised), mo);
         out.rivets = pm.rivets;
         earlier_parts.push_back(part_as_obstacle(out.load, out.realised, scene.material.thickness));
       }
@@ -214,7 +217,10 @@ nlohmann::json result_json(const Problem& problem, const GenerateResult& result,
       json rivets = json::array();
       for (const Vec3& r : o.rivets) rivets.push_back(v3(r));
       p["rivets"] = rivets;
-      p["self_rivets"] = json::array();
+      json self_rivets = json::array();
+      for (const auto& t : c.self_rivets)
+        self_rivets.push_back({{"tabs", {t.polygon_a, t.polygon_b}}, {"point", v3(t.point_a)}});
+      p["self_rivets"] = self_rivets;
       p["bend_sequence"] = o.plan.sequence.order;
       p["flat_pattern"] = flat_pattern_json(o.plan.flat, o.plan.sequence.order);
     }
@@ -225,6 +231,7 @@ nlohmann::json result_json(const Problem& problem, const GenerateResult& result,
     p["history"] = history;
     p["library_segments"] = o.library_size;
     p["fem_calls"] = o.fem_calls;
+    p["self_rivet_candidates"] = o.self_rivet_candidates;
     p["timing"] = {{"environment_s", o.environment_seconds}, {"discovery_s", o.discovery_seconds},
                    {"composition_s", o.composition_seconds}, {"total_s", o.total_seconds}};
     parts.push_back(p);

@@ -50,6 +50,7 @@ struct LoadOutcome {
   DiscoveryStats discovery;
   int library_size = 0;
   int fem_calls = 0;
+  int self_rivet_candidates = 0;     // gusset variants the composition tried
   double environment_seconds = 0, discovery_seconds = 0, composition_seconds = 0, total_seconds = 0;
 };
 

@@ -69,6 +69,8 @@ class Simulator {
  private:
   bool pair_clear(int a, int b, BendCollision& hit) const {
     if (part_.tabs[a].parent == b || part_.tabs[b].parent == a) return true;
+    // A self-rivet pair closes onto itself at the end of its bends by design.
+    if (part_.tabs[a].riveted_to == b || part_.tabs[b].riveted_to == a) return true;
     const RealisedTab& ta = rp_.tabs[a];
     const RealisedTab& tb = rp_.tabs[b];
     if (box_gap(ta.box, tb.box) >= need_) return true;

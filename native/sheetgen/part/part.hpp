@@ -39,6 +39,10 @@ struct Tab {
   TabParameters params;   // unused for the base
   int rivet_area = -1;    // >= 0: a rivet flange lying flush on Problem::rivet_areas[rivet_area]
   int tag = -1;           // free for callers (e.g. segment id in discovery); ignored by this library
+  // >= 0: a self-rivet tab lying flush on (overlapping) that tab, riveted to it
+  // (paper Sec. 5.2). The pair may touch: self-intersection and bend-sequence
+  // checks skip it.
+  int riveted_to = -1;
 };
 
 // The base tab's plane and outline. normal = x_axis x y_axis is the sheet's top

@@ -149,7 +149,13 @@ bool bend_zone_room(const Part& part, const RealisedPart& rp, const SheetSpec& s
   return false;
 }
 
-bool adjacent(const Part& part, int i, int j) { return part.tabs[i].parent == j || part.tabs[j].parent == i; }
+// Tabs that may touch: a tab and its parent (they share the bend), and a
+// self-rivet pair (they overlap by design).
+bool adjacent(const Part& part, int i, int j) {
+  const Tab& a = part.tabs[i];
+  const Tab& b = part.tabs[j];
+  return a.parent == j || b.parent == i || a.riveted_to == j || b.riveted_to == i;
+}
 
 double box_gap(const BoundingBox& a, const BoundingBox& b) {
   const Vec3 gap = (a.min - b.max).cwiseMax(b.min - a.max).cwiseMax(Vec3::Zero());

@@ -82,7 +82,7 @@ PartModel build_part_model(const Problem& problem, int load_index, const PlateGe
   for (const auto& tie : options.self_rivets) {
     const int a = pm.mesh.fixed_point_nodes[tie.polygon_a][next[tie.polygon_a]++];
     const int b = pm.mesh.fixed_point_nodes[tie.polygon_b][next[tie.polygon_b]++];
-    m.rigid_links.push_back(RigidLink{a, {b}});
+    if (a != b) m.rigid_links.push_back(RigidLink{a, {b}});  // the mesher may already have merged the two points into one node
   }
 
   // The load box: rigid, bonded to the base-tab nodes under it (DESIGN.md).

@@ -1,0 +1,188 @@
+#include "sheetgen/compose/self_rivet.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <optional>
+
+#include "sheetgen/part/polygon_geometry.hpp"
+#include "sheetgen/part/part.hpp"
+
+namespace sheetgen {
+
+namespace {
+
+int tree_distance(const Part& part, int i, int j) {
+  std::vector<int> up_i;
+  for (int k = i; k >= 0; k = part.tabs[k].parent) up_i.push_back(k);
+  int steps = 0;
+  for (int k = j; k >= 0; k = part.tabs[k].parent, ++steps) {
+    auto it = std::find(up_i.begin(), up_i.end(), k);
+    if (it != up_i.end()) return steps + static_cast<int>(it - up_i.begin());
+  }
+  return 1 << 20;
+}
+
+bool edge_has_child(const Part& part, int tab, int edge) {
+  for (int c : part.children(tab))
+    if (part.tabs[c].parent_edge == edge) return true;
+  return false;
+}
+
+std::vector<Vec2> ccw(std::vector<Vec2> p) {
+  if (signed_area(p) < 0) std::reverse(p.begin(), p.end());
+  return p;
+}
+
+}  // namespace
+
+std::vector<VisiblePair> visible_edge_pairs(const Part& part, const RealisedPart& rp, double thickness, const SelfRivetOptions& o) {
+  const double tolerance = o.coplanar_tolerance > 0 ? o.coplanar_tolerance : 1.5 * thickness;
+  std::vector<FreeEdge> edges;
+  for (const FreeEdge& e : rp.free_edges())
+    if (!edge_has_child(part, e.tab, e.edge) && part.tabs[e.tab].riveted_to < 0) edges.push_back(e);
+  std::vector<VisiblePair> pairs;
+  for (size_t i = 0; i < edges.size(); ++i)
+    for (size_t j = i + 1; j < edges.size(); ++j) {
+      const FreeEdge& a = edges[i];
+      const FreeEdge& b = edges[j];
+      if (a.tab == b.tab) continue;
+      const Vec3 na = rp.tabs[a.tab].normal, nb = rp.tabs[b.tab].normal;
+      // Parent tabs in one plane: a gusset between them would be a flat patch, not a brace.
+      if (na.cross(nb).norm() < std::sin(o.min_plane_angle) && std::abs((rp.tabs[b.tab].origin - rp.tabs[a.tab].origin).dot(na)) < tolerance)
+        continue;
+      // Plane through edge a and the farther endpoint of b.
+      const Vec3 ea = a.b - a.a;
+      const Vec3 pb = ((b.a - a.a).cross(ea).norm() > (b.b - a.a).cross(ea).norm()) ? b.a : b.b;
+      Vec3 n = ea.cross(pb - a.a);
+      if (n.norm() < 1e-12) continue;
+      n.normalize();
+      if (std::abs((b.a - a.a).dot(n)) > tolerance || std::abs((b.b - a.a).dot(n)) > tolerance) continue;
+      if (n.cross(na).norm() < std::sin(o.min_plane_angle) || n.cross(nb).norm() < std::sin(o.min_plane_angle)) continue;
+      VisiblePair p{a, b, n, tree_distance(part, a.tab, b.tab), (0.5 * (a.a + a.b) - 0.5 * (b.a + b.b)).norm()};
+      pairs.push_back(p);
+    }
+  std::stable_sort(pairs.begin(), pairs.end(), [](const VisiblePair& x, const VisiblePair& y) {
+    return x.tree_distance != y.tree_distance ? x.tree_distance > y.tree_distance : x.gap < y.gap;
+  });
+  if (static_cast<int>(pairs.size()) > o.max_pairs) pairs.resize(o.max_pairs);
+  return pairs;
+}
+
+std::vector<SelfRivetPlan> gusset_plans(const Part& part, const RealisedPart& rp, const VisiblePair& pair, const Problem& problem) {
+  const Manufacturing& mf = problem.manufacturing;
+  const Vec3 n = pair.plane_normal;
+  // 2-D frame of the common plane.
+  const Vec3 ex = (pair.a.b - pair.a.a).normalized();
+  const Vec3 ey = n.cross(ex);
+  const Vec3 origin = pair.a.a;
+  auto to2 = [&](const Vec3& p) { return Vec2((p - origin).dot(ex), (p - origin).dot(ey)); };
+
+  const SheetSpec spec = SheetSpec::from(problem);
+  struct Side {
+    const FreeEdge* e;
+    Vec3 dir;        // unit, along the edge (a -> b)
+    Vec3 v;          // unit, in the plane, perpendicular to the edge, towards the other edge
+    double theta3;   // rad
+    double theta2;   // rad, skew leaning the gusset towards the other edge's middle
+    double d, w;     // m, root offset and width
+    double reach;    // m, along v, to the other edge's midpoint
+  };
+  auto make_side = [&](const FreeEdge& e, const FreeEdge& other, bool lean_in) -> std::optional<Side> {
+    const Vec3 dir = (e.b - e.a).normalized();
+    const Vec3 mo = 0.5 * (other.a + other.b) - 0.5 * (e.a + e.b);
+    Vec3 v = mo - mo.dot(dir) * dir;
+    v -= v.dot(n) * n;
+    if (v.norm() < 1e-9) return std::nullopt;
+    v.normalize();
+    const RealisedTab& t = rp.tabs[e.tab];
+    const Vec3 o = e.outward;  // in the tab's plane, away from it
+    const double theta3 = std::atan2(v.dot(t.normal), v.dot(o));
+    const double mag = std::abs(theta3);
+    if (mag < mf.min_bend_angle || mag > mf.max_bend_angle) return std::nullopt;
+    const double reach = mo.dot(v);
+    if (!(reach > 0)) return std::nullopt;
+    // Lean towards the other edge's middle (grammar: + leans towards the edge's end b).
+    const double lean = lean_in ? std::clamp(std::atan2(mo.dot(dir), reach), -0.9 * mf.max_skew, 0.9 * mf.max_skew) : 0.0;
+    // Keep clear of the bends at the edge's ends (their bend zones) and leave the
+    // room a skewed root slides along its edge in the flat, dL tan(theta2)
+    // (docs/manufacturing.md).
+    const double margin = bend_zone_depth(theta3, spec) + std::abs(bend_length_change(theta3, spec) * std::tan(lean)) + 0.5e-3;
+    const double w = e.length - 2 * margin;
+    if (w < mf.min_tab_width) return std::nullopt;
+    return Side{&e, dir, v, theta3, lean, margin, w, reach};
+  };
+  // Straight gussets (square to their edges) and gussets leaning towards the
+  // other edge's middle: which one fits depends on what lies between the edges.
+  std::vector<std::pair<Side, Side>> shapes;
+  for (bool lean_a : {false, true})
+    for (bool lean_b : {false, true}) {
+      const auto sa = make_side(pair.a, pair.b, lean_a), sb = make_side(pair.b, pair.a, lean_b);
+      if (sa && sb) shapes.emplace_back(*sa, *sb);
+    }
+
+  const double edge_distance = mf.rivet_edge_distance;
+  std::vector<SelfRivetPlan> plans;
+  const double fractions[] = {0.35, 0.5, 0.7, 1.0};
+  for (const auto& [side_a, side_b] : shapes)
+  for (double fa : fractions)
+    for (double fb : fractions) {
+      const Side* sa = &side_a;
+      const Side* sb = &side_b;
+      const double la = std::clamp(fa * sa->reach, mf.min_tab_length, mf.max_tab_length);
+      const double lb = std::clamp(fb * sb->reach, mf.min_tab_length, mf.max_tab_length);
+      // The gusset quad: root [P0, P1] on the edge, sides along the leaning centre line.
+      auto rect = [&](const Side& s, double l) {
+        const Vec3 p0 = s.e->a + s.d * s.dir, p1 = p0 + s.w * s.dir;
+        const Vec3 side = l * (s.v + std::tan(s.theta2) * s.dir);
+        return ccw({to2(p0), to2(p1), to2(p1 + side), to2(p0 + side)});
+      };
+      const std::vector<Vec2> ra = rect(*sa, la), rb = rect(*sb, lb);
+      const std::vector<Vec2> overlap = clip_convex(ra, rb);
+      if (overlap.size() < 3) continue;
+      const std::vector<Vec2> room = inset_convex(ccw(overlap), edge_distance);
+      if (room.size() < 3) continue;
+      // Rivets: the centre of the room, plus more along its longest extent at the pitch.
+      const Vec2 c = polygon_centroid(room);
+      Vec2 lo = room[0], hi = room[0];
+      for (const Vec2& q : room) { lo = lo.cwiseMin(q); hi = hi.cwiseMax(q); }
+      std::vector<Vec2> rivets2 = {c};
+      const Vec2 span = hi - lo;
+      const int axis = span.x() > span.y() ? 0 : 1;
+      const int extra = static_cast<int>(std::floor(span[axis] / mf.rivet_pitch / 2));
+      for (int k = 1; k <= std::min(extra, 2); ++k)
+        for (int sgn : {-1, 1}) {
+          Vec2 q = c;
+          q[axis] += sgn * k * mf.rivet_pitch;
+          rivets2.push_back(q);
+        }
+
+      SelfRivetPlan plan;
+      plan.part = part;
+      auto add = [&](const Side& s, double l) {
+        TabParameters tp;
+        tp.d = s.d;
+        tp.w = s.w;
+        tp.l = l;
+        tp.theta2 = s.theta2;
+        tp.theta3 = s.theta3;
+        return plan.part.add_tab(s.e->tab, s.e->edge, tp);
+      };
+      plan.tab_a = add(*sa, la);
+      plan.tab_b = add(*sb, lb);
+      plan.part.tabs[plan.tab_a].riveted_to = plan.tab_b;
+      plan.part.tabs[plan.tab_b].riveted_to = plan.tab_a;
+      // Each gusset lies in the plane through its own edge (normal n); a rivet is a
+      // point on each, joined through the thickness.
+      const double off_b = (pair.b.a - origin).dot(n);
+      for (const Vec2& q : rivets2) {
+        plan.rivets_a.push_back(origin + q.x() * ex + q.y() * ey);
+        plan.rivets_b.push_back(plan.rivets_a.back() + off_b * n);
+      }
+      plan.added_area = sa->w * la + sb->w * lb;
+      plans.push_back(std::move(plan));
+    }
+  std::stable_sort(plans.begin(), plans.end(), [](const SelfRivetPlan& x, const SelfRivetPlan& y) { return x.added_area < y.added_area; });
+  return plans;
+}
+
+}  // namespace sheetgen
