@@ -203,7 +203,13 @@ int solve(const SolveArgs& a) {
     std::fprintf(stderr, "sheetgen: interrupted; nothing was written\n");
     return 130;
   }
-  sheetgen::write_outputs(a.out, problem, result, a.problem);
+  try {
+    sheetgen::write_outputs(a.out, problem, result, a.problem);
+  } catch (const std::runtime_error& e) {
+    // The output folder is the user's choice: report it like bad input.
+    std::fprintf(stderr, "sheetgen: %s\n", e.what());
+    return 1;
+  }
   for (const auto& l : result.loads) {
     if (l.ok)
       std::printf("%-20s ok  area %.1f cm^2  mass %.1f g  bends %d  compliance %.4g J (limit %.4g)  deflection %.3f mm  MS %.2f  %.1f s\n",

@@ -11,6 +11,7 @@
 #include "sheetgen/core/geometry.hpp"
 #include "sheetgen/env/environment.hpp"
 #include "sheetgen/part/exports.hpp"
+#include "sheetgen/part/validity.hpp"
 #include "sheetgen/structure/part_model.hpp"
 
 namespace sheetgen {
@@ -110,6 +111,28 @@ GenerateResult generate(const Problem& input, const GenerateOptions& options, Ge
     const Environment env(scene);
     out.environment_seconds = seconds_since(load_start);
     if (cancelled()) break;
+
+    // A base tab that is not clear (the load sits in or on an obstacle) cannot
+    // carry any part: say so instead of searching.
+    {
+      const Part base = make_base_part(scene.loads[li], li, scene.material.thickness);
+      ValidityOptions vo;
+      vo.stop_at_first = true;
+      const ValidityReport report = check_validity(base, realise(base), env, vo);
+      if (env.inside_closed_obstacle(scene.loads[li].center)) {
+        out.reason = "load '" + out.load + "' lies inside a closed obstacle of the environment: no part can reach it";
+        out.total_seconds = seconds_since(load_start);
+        result.loads.push_back(std::move(out));
+        continue;
+      }
+      if (!report.valid()) {
+        out.reason = "the base tab under load '" + out.load + "' is not clear of the environment (" + report.summary() +
+                     "): the load overlaps or touches an obstacle";
+        out.total_seconds = seconds_since(load_start);
+        result.loads.push_back(std::move(out));
+        continue;
+      }
+    }
 
     // Discovery.
     if (progress) progress->stage = static_cast<int>(Stage::Discovery);

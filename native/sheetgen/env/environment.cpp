@@ -84,6 +84,29 @@ Environment::Environment(const Problem& problem, const EnvironmentOptions& optio
   for (const auto& m : problem_.meshes) geoms.push_back(&m.mesh);
   for (const auto& b : boxes) geoms.push_back(&b);
   rays_ = std::make_unique<RayCaster>(geoms);
+  for (const auto& m : problem_.meshes) mesh_closed_.push_back(m.mesh.is_closed() ? 1 : 0);
+}
+
+bool Environment::inside_closed_obstacle(const Vec3& p) const {
+  const int nm = static_cast<int>(problem_.meshes.size());
+  if (std::none_of(mesh_closed_.begin(), mesh_closed_.end(), [](char c) { return c != 0; })) return false;
+  // Odd directions, so a ray rarely runs exactly along an edge of axis-aligned geometry.
+  const Vec3 dirs[3] = {Vec3(0.8017, 0.2673, 0.5345), Vec3(-0.3015, 0.9045, -0.3015), Vec3(0.2357, -0.2357, -0.9428)};
+  int votes = 0;
+  for (const Vec3& d : dirs) {
+    std::vector<int> crossings(nm, 0);
+    double from = 0;
+    for (int step = 0; step < 10000; ++step) {
+      auto hit = rays_->first_hit(p, d, std::numeric_limits<double>::infinity(), from);
+      if (!hit) break;
+      if (hit->geometry < nm) ++crossings[hit->geometry];
+      from = hit->distance + 1e-7;
+    }
+    bool inside = false;
+    for (int m = 0; m < nm; ++m) inside = inside || (mesh_closed_[m] && crossings[m] % 2 == 1);
+    votes += inside;
+  }
+  return votes >= 2;
 }
 
 Environment::~Environment() = default;

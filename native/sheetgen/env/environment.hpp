@@ -68,6 +68,12 @@ class Environment {
   // The field of the plain obstacles (environment faces outside rivet areas), for benchmarks and diagnostics.
   const DistanceField& obstacle_field() const;
 
+  // Is p inside a closed (watertight) environment mesh? Ray parity, majority of
+  // three directions. The clearance field is unsigned (docs/environment.md), so
+  // a point deep inside a solid looks "far from everything" to it; a load box
+  // placed inside a cabinet is caught here.
+  bool inside_closed_obstacle(const Vec3& p) const;
+
   // First obstacle hit along the ray o + s d, 0 < s <= max_distance (d need not be unit).
   std::optional<RayHit> cast_ray(const Vec3& origin, const Vec3& direction, double max_distance) const;
 
@@ -86,6 +92,7 @@ class Environment {
   std::vector<BoundingBox> rivet_bounds_;
   std::unique_ptr<RayCaster> rays_;
   std::vector<std::vector<int>> face_rivet_area_;  // [mesh][face] -> rivet area or -1
+  std::vector<char> mesh_closed_;                    // per environment mesh: watertight
 };
 
 }  // namespace sheetgen

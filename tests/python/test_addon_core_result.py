@@ -1,0 +1,139 @@
+"""The add-on core's result -> mesh data, outside Blender.
+
+Run: /usr/bin/python3 -m unittest discover -s tests/python -p 'test_addon_core_*.py'
+
+The document is a hand-made sheetgen-result/1 part: a 0.1 m x 0.1 m base tab
+at z = 0.2 with one child tab bent 90 degrees down along its x = 0.1 edge
+(0.08 m wide, 0.05 m long), the flat pattern with the child unfolded to
+x in [0.1, 0.15] and two 1.6 mm relief notches at the bend's ends.
+"""
+import math
+import os
+import sys
+import unittest
+
+ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
+sys.path.insert(0, os.path.join(ROOT, "blender_addon"))
+
+from sheetgen_blender.core import result as R  # noqa: E402
+
+T = 0.0016
+
+
+def bracket(bend_b=(0.1008, 0.09), status="ok"):
+    # base tab corners, then the child: its first edge lies on the base's edge 1 (x = 0.1), 1e-9 m off
+    base = [[0.0, 0.0, 0.2], [0.1, 0.0, 0.2], [0.1, 0.1, 0.2], [0.0, 0.1, 0.2]]
+    child = [[0.1 + 1e-9, 0.09, 0.2], [0.1, 0.01, 0.2], [0.1, 0.01, 0.15], [0.1, 0.09, 0.15]]
+    outline = [[0.0, 0.0], [0.1, 0.0], [0.1, 0.01], [0.1016, 0.01], [0.15, 0.01], [0.15, 0.09],
+               [0.1016, 0.09], [0.1, 0.09], [0.1, 0.1], [0.0, 0.1]]
+    return {
+        "load": "box", "status": status,
+        "area_m2": 0.014, "mass_kg": 0.0623, "bends": 1, "compliance": 0.02, "compliance_limit": 0.1,
+        "deflection_m": 0.0002, "margin_of_safety": 1.25, "timing": {"total_s": 3.5},
+        "tabs": [{"index": 0, "parent": -1, "corners": base},
+                 {"index": 1, "parent": 0, "parent_edge": 1, "corners": child}],
+        "rivets": [[0.05, 0.05, 0.2], [0.1, 0.05, 0.16]],
+        "flat_pattern": {"outline": [outline], "area_m2": 0.014,
+                         "bends": [{"tab": 1, "number": 1, "a": [0.1008, 0.01], "b": list(bend_b),
+                                    "angle": -math.pi / 2, "direction": "down"}],
+                         "reliefs": []},
+    }
+
+
+def doc(*parts):
+    return {"format": "sheetgen-result/1", "parts": list(parts)}
+
+
+class BentMesh(unittest.TestCase):
+    def test_two_tabs_weld_and_mark_the_bend(self):
+        m = R.bent_mesh(bracket())
+        # 8 corners, the child's first two on the base's edge: (0.1+1e-9, 0.09) is not a base corner,
+        # so nothing welds except what coincides within 1e-6 m: none of the base corners -> 8 vertices.
+        self.assertEqual(len(m.vertices), 8)
+        self.assertEqual(len(m.faces), 4)                         # 2 triangles per quad tab
+        self.assertEqual(R.tab_triangle_count(bracket()), 4)
+        self.assertEqual(m.bend_edges, [(4, 5, 1)])               # the child's corners 0-1, bend number 1
+        self.assertAlmostEqual(m.area(), 0.1 * 0.1 + 0.08 * 0.05, places=12)
+
+    def test_coincident_corners_are_one_vertex(self):
+        part = bracket()
+        part["tabs"][1]["corners"][0] = [0.1 + 4e-7, 0.1, 0.2]   # within WELD_TOL of the base corner 2
+        m = R.bent_mesh(part)
+        self.assertEqual(len(m.vertices), 7)
+        self.assertEqual(m.bend_edges[0][0], 2)
+
+    def test_tab_with_two_corners_is_an_error(self):
+        part = bracket()
+        part["tabs"][1]["corners"] = part["tabs"][1]["corners"][:2]
+        with self.assertRaisesRegex(R.ResultError, r"parts\['box'\]\.tabs\[1\]\.corners"):
+            R.bent_mesh(part)
+
+
+class FlatMesh(unittest.TestCase):
+    def test_bend_line_splits_the_outline(self):
+        m = R.flat_mesh(bracket(), snap=2 * T)
+        # the bend's end points are inserted on the relief edges: 10 + 2 vertices, 2 faces
+        self.assertEqual(len(m.vertices), 12)
+        self.assertEqual(len(m.faces), 2)
+        self.assertEqual(m.loose_edges, [])
+        (a, b, n), = m.bend_edges
+        self.assertEqual(n, 1)
+        self.assertEqual(m.vertices[a], (0.1008, 0.01, 0.0))
+        self.assertEqual(m.vertices[b][2], 0.0)
+        self.assertAlmostEqual(m.area(), R.outline_area(bracket()), places=15)
+        self.assertAlmostEqual(R.outline_area(bracket()), 0.1 * 0.1 + 0.05 * 0.08, places=15)
+        areas = sorted(m.face_area(f) for f in range(2))
+        self.assertAlmostEqual(areas[0], 0.0492 * 0.08, places=12)   # the unfolded child, from the bend line
+        self.assertAlmostEqual(areas[1], 0.01 + 0.0008 * 0.08, places=12)
+
+    def test_end_point_off_the_outline_is_snapped(self):
+        # b 0.5 mm beyond the outline: within 2 t, moved onto the nearest edge (y = 0.09)
+        m = R.flat_mesh(bracket(bend_b=(0.1012, 0.0905)), snap=2 * T)
+        self.assertEqual(len(m.faces), 2)
+        b = m.vertices[m.bend_edges[0][1]]
+        self.assertAlmostEqual(b[0], 0.1012, places=12)
+        self.assertAlmostEqual(b[1], 0.09, places=12)
+
+    def test_bend_far_from_the_outline_is_a_loose_edge(self):
+        m = R.flat_mesh(bracket(bend_b=(0.1008, 0.2)), snap=2 * T)
+        self.assertEqual(len(m.faces), 1)
+        self.assertEqual(len(m.loose_edges), 1)
+        self.assertEqual(len(m.bend_edges), 1)
+        self.assertEqual(m.vertices[m.loose_edges[0][1]], (0.1008, 0.2, 0.0))
+
+
+class Document(unittest.TestCase):
+    def test_part_meshes_and_rivets(self):
+        failed = bracket(status="no_valid_part")
+        failed["load"] = "other"
+        pms = R.part_meshes(doc(bracket(), failed), T)
+        self.assertEqual([p.load for p in pms], ["box", "other"])
+        self.assertIsNone(pms[1].bent)
+        self.assertEqual(len(pms[0].rivets.vertices), 12)          # 6 per octahedron
+        self.assertEqual(len(pms[0].rivets.faces), 16)             # 8 per octahedron
+        r = max(1.5 * T, 0.002)
+        self.assertEqual(pms[0].rivets.vertices[0], (0.05 + r, 0.05, 0.2))
+
+    def test_wrong_format(self):
+        with self.assertRaisesRegex(R.ResultError, "sheetgen-result/1"):
+            R.part_meshes({"format": "sheetgen-problem/1", "parts": []}, T)
+
+    def test_report_in_panel_units(self):
+        v = R.report(bracket())
+        self.assertAlmostEqual(v["area_m2"], 140.0)          # cm²
+        self.assertAlmostEqual(v["mass_kg"], 62.3)           # g
+        self.assertEqual(v["bends"], 1)
+        self.assertEqual(v["compliance"], 0.02)
+        self.assertEqual(v["compliance_limit"], 0.1)
+        self.assertAlmostEqual(v["deflection_m"], 0.2)       # mm
+        self.assertEqual(v["margin_of_safety"], 1.25)
+        self.assertEqual(v["time_s"], 3.5)
+        rows = dict(R.report_rows(bracket()))
+        self.assertEqual(rows["Area (cm²)"], "140.0")
+        self.assertEqual(rows["Deflection (mm)"], "0.200")
+        self.assertEqual(rows["Run time (s)"], "3.5")
+        self.assertEqual(R.status_line(bracket()), "box: 140.0 cm², 1 bends, MS 1.25")
+
+
+if __name__ == "__main__":
+    unittest.main()

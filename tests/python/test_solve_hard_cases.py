@@ -1,0 +1,142 @@
+#!/usr/bin/python3
+"""`sheetgen solve` on hard cases (issue 6): each ends with the documented exit
+code and a per-load reason a user can act on, and Ctrl-C ends a run within a
+second leaving nothing that looks finished.
+
+Run: /usr/bin/python3 tests/python/test_solve_hard_cases.py --sheetgen build/native/cli/sheetgen
+"""
+import argparse
+import json
+import os
+import signal
+import subprocess
+import sys
+import tempfile
+import time
+import unittest
+
+SHEETGEN = None
+QUICK = ["--chains", "4", "--iterations", "150", "--threads", "2"]
+
+
+def floor_and_wall(extra_meshes=(), ras=None, loads=None, requirements=None):
+    """A floor z = 0 and a wall x = 0, 0.6 m squares, 2 triangles each."""
+    meshes = [
+        {"name": "floor", "vertices": [[0, -0.3, 0], [0.6, -0.3, 0], [0.6, 0.3, 0], [0, 0.3, 0]], "triangles": [[0, 1, 2], [0, 2, 3]]},
+        {"name": "wall", "vertices": [[0, -0.3, 0], [0, 0.3, 0], [0, 0.3, 0.6], [0, -0.3, 0.6]], "triangles": [[0, 1, 2], [0, 2, 3]]},
+    ] + list(extra_meshes)
+    return {
+        "format": "sheetgen-problem/1",
+        "environment": {"meshes": meshes},
+        "rivet_areas": ras or [{"name": "floor_all", "mesh": "floor", "faces": [0, 1]}],
+        "loads": loads or [{"name": "box", "center": [0.3, 0, 0.25], "size": [0.12, 0.1, 0.08], "force": [0, 0, -100]}],
+        "requirements": requirements or {"max_deflection": 2e-3},
+    }
+
+
+def box_mesh(name, lo, hi):
+    v = [[hi[0] if k & 1 else lo[0], hi[1] if k & 2 else lo[1], hi[2] if k & 4 else lo[2]] for k in range(8)]
+    quads = [(0, 2, 3, 1), (4, 5, 7, 6), (0, 1, 5, 4), (2, 6, 7, 3), (0, 4, 6, 2), (1, 3, 7, 5)]
+    t = []
+    for q in quads:
+        t += [[q[0], q[1], q[2]], [q[0], q[2], q[3]]]
+    return {"name": name, "vertices": v, "triangles": t}
+
+
+def solve(problem, *extra):
+    d = tempfile.mkdtemp(prefix="sheetgen_hard_")
+    path = os.path.join(d, "problem.json")
+    json.dump(problem, open(path, "w"))
+    out = os.path.join(d, "out")
+    p = subprocess.run([SHEETGEN, "solve", path, "--out", out] + QUICK + list(extra), capture_output=True, text=True)
+    result = json.load(open(os.path.join(out, "result.json"))) if os.path.exists(os.path.join(out, "result.json")) else None
+    return p, result, out
+
+
+class HardCases(unittest.TestCase):
+    def test_unreachable_rivet_area_is_exit_2_with_reason(self):
+        # The only rivet area is on the floor, sealed under a closed box (a cabinet) the part cannot enter.
+        prob = floor_and_wall(extra_meshes=[box_mesh("cabinet", [0.35, -0.25, -0.01], [0.55, -0.05, 0.1])],
+                              ras=[{"name": "under_cabinet", "mesh": "floor", "faces": [0, 1]}])
+        # Restrict the rivet area to faces fully inside the cabinet: re-mesh the floor so one quad lies under it.
+        prob["environment"]["meshes"][0] = {"name": "floor", "vertices": [
+            [0, -0.3, 0], [0.6, -0.3, 0], [0.6, 0.3, 0], [0, 0.3, 0], [0.4, -0.2, 0], [0.5, -0.2, 0], [0.5, -0.1, 0], [0.4, -0.1, 0]],
+            "triangles": [[4, 5, 6], [4, 6, 7], [0, 1, 5], [0, 5, 4], [1, 2, 6], [1, 6, 5], [2, 3, 7], [2, 7, 6], [3, 0, 4], [3, 4, 7]]}
+        prob["rivet_areas"] = [{"name": "under_cabinet", "mesh": "floor", "faces": [0, 1]}]
+        p, result, _ = solve(prob)
+        self.assertEqual(p.returncode, 2, p.stdout + p.stderr)
+        part = result["parts"][0]
+        self.assertEqual(part["status"], "no_valid_part")
+        self.assertIn("no segment reached a rivet area", part["reason"])
+
+    def test_load_inside_an_obstacle_is_exit_2_with_reason(self):
+        prob = floor_and_wall(extra_meshes=[box_mesh("crate", [0.2, -0.1, 0.1], [0.4, 0.1, 0.4])])
+        p, result, _ = solve(prob)
+        self.assertEqual(p.returncode, 2, p.stdout + p.stderr)
+        reason = result["parts"][0]["reason"]
+        self.assertIn("load 'box' lies inside a closed obstacle", reason)
+
+    def test_load_touching_an_obstacle_is_exit_2_with_reason(self):
+        # The box rests on a crate: its base tab would have to pass through the crate's top.
+        prob = floor_and_wall(extra_meshes=[box_mesh("crate", [0.2, -0.1, 0.0], [0.4, 0.1, 0.21])])
+        p, result, _ = solve(prob)
+        self.assertEqual(p.returncode, 2, p.stdout + p.stderr)
+        reason = result["parts"][0]["reason"]
+        self.assertIn("base tab under load 'box' is not clear", reason)
+        self.assertIn("overlaps or touches an obstacle", reason)
+
+    def test_impossible_compliance_is_exit_2_naming_the_miss(self):
+        # A 1 micrometre deflection under 100 N: no 1.6 mm aluminium bracket is that stiff.
+        prob = floor_and_wall(requirements={"max_deflection": 1e-6})
+        p, result, _ = solve(prob)
+        self.assertEqual(p.returncode, 2, p.stdout + p.stderr)
+        reason = result["parts"][0]["reason"]
+        self.assertIn("compliance", reason)
+        self.assertIn("over the limit", reason)
+
+    def test_ctrl_c_ends_within_a_second_and_writes_nothing(self):
+        prob = floor_and_wall()
+        d = tempfile.mkdtemp(prefix="sheetgen_sigint_")
+        path = os.path.join(d, "problem.json")
+        json.dump(prob, open(path, "w"))
+        out = os.path.join(d, "out")
+        proc = subprocess.Popen([SHEETGEN, "solve", path, "--out", out, "--threads", "2"], stdout=subprocess.PIPE,
+                                stderr=subprocess.PIPE, text=True)
+        time.sleep(2.0)
+        self.assertIsNone(proc.poll(), "the run should still be going after 2 s")
+        t0 = time.monotonic()
+        proc.send_signal(signal.SIGINT)
+        _, err = proc.communicate(timeout=10)
+        waited = time.monotonic() - t0
+        self.assertEqual(proc.returncode, 130)
+        self.assertLess(waited, 1.0)
+        self.assertIn("interrupted", err)
+        self.assertFalse(os.path.exists(os.path.join(out, "result.json")))
+        leftovers = [f for f in os.listdir(out)] if os.path.isdir(out) else []
+        self.assertEqual([f for f in leftovers if not f.startswith(".sheetgen-staging")], [])
+
+    def test_unwritable_output_is_an_error_not_a_half_written_folder(self):
+        # --out names an existing regular file: the folder cannot be made (this works as root too,
+        # where permission bits would not stop a write).
+        prob = floor_and_wall()
+        d = tempfile.mkdtemp(prefix="sheetgen_ro_")
+        path = os.path.join(d, "problem.json")
+        json.dump(prob, open(path, "w"))
+        out = os.path.join(d, "not_a_folder")
+        open(out, "w").write("keep me")
+        p = subprocess.run([SHEETGEN, "solve", path, "--out", out] + QUICK, capture_output=True, text=True)
+        self.assertEqual(p.returncode, 1, p.stderr)
+        self.assertIn("cannot create the output folder", p.stderr)
+        self.assertEqual(len(p.stderr.strip().splitlines()), 1, p.stderr)
+        self.assertEqual(open(out).read(), "keep me")
+
+
+if __name__ == "__main__":
+    ap = argparse.ArgumentParser()
+    ap.add_argument("--sheetgen", required=True)
+    args, rest = ap.parse_known_args()
+    SHEETGEN = os.path.abspath(args.sheetgen)
+    result = unittest.main(argv=[sys.argv[0]] + rest, exit=False, verbosity=2).result
+    print("hard cases: %d passed, %d failed" % (result.testsRun - len(result.failures) - len(result.errors) - len(result.skipped),
+                                               len(result.failures) + len(result.errors)))
+    sys.exit(0 if result.wasSuccessful() else 1)

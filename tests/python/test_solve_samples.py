@@ -1,0 +1,52 @@
+#!/usr/bin/python3
+"""Every sample problem solves at the default settings (10 chains x 1000
+iterations) with status ok, and each part passes the independent checks of
+tests/python/verify_result.py (brute-force clearance, flange on its rivet area,
+CalculiX compliance, ezdxf outline).
+
+Run: /usr/bin/python3 tests/python/test_solve_samples.py --sheetgen build/native/cli/sheetgen [SCENE ...]
+"""
+import argparse
+import os
+import subprocess
+import sys
+import tempfile
+import time
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+ROOT = os.path.dirname(os.path.dirname(HERE))
+SCENES = ["corner", "corner_obstacle", "slanted"]
+
+
+def main():
+    ap = argparse.ArgumentParser()
+    ap.add_argument("--sheetgen", required=True)
+    ap.add_argument("scenes", nargs="*", default=SCENES)
+    args = ap.parse_args()
+    sheetgen = os.path.abspath(args.sheetgen)
+    passed, failed = 0, 0
+    for scene in args.scenes:
+        out = tempfile.mkdtemp(prefix="sheetgen_sample_%s_" % scene)
+        t0 = time.monotonic()
+        p = subprocess.run([sheetgen, "solve", os.path.join(ROOT, "sample_scenes", scene, "problem.json"), "--out", out,
+                            "--threads", "2"], capture_output=True, text=True)
+        solve_s = time.monotonic() - t0
+        print("== %s: exit %d in %.1f s\n%s" % (scene, p.returncode, solve_s, p.stdout.strip()))
+        if p.returncode != 0:
+            print(p.stderr)
+            failed += 1
+            continue
+        v = subprocess.run([sys.executable, os.path.join(HERE, "verify_result.py"), out, "--sheetgen", sheetgen],
+                           capture_output=True, text=True)
+        print(v.stdout.strip())
+        if v.returncode == 0:
+            passed += 1
+        else:
+            print(v.stderr)
+            failed += 1
+    print("solve samples: %d passed, %d failed" % (passed, failed))
+    sys.exit(1 if failed else 0)
+
+
+if __name__ == "__main__":
+    main()
