@@ -13,11 +13,11 @@ bl_info = {
     "version": (0, 1, 0),
     "blender": (3, 4, 0),
     "location": "View3D > Sidebar > Sheet Metal",
-    "description": "Tag rivet areas and loads, export/import/check sheetgen problems",
+    "description": "Tag rivet areas and loads, generate sheet-metal brackets, render and export them",
     "category": "Object",
 }
 
-_MODULES = ("properties", "operators", "panels")
+_MODULES = ("properties", "operators", "generate", "panels")
 
 
 def _modules():

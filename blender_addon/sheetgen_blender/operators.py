@@ -2,7 +2,7 @@
 
 Operators read the scene into plain data (scene_io), let the core convert and
 validate it, and turn every domain error into ``self.report`` — never a
-traceback. The Generate operator is not here yet: see generate.py.
+traceback. Generate, its Export and Render are in generate.py.
 """
 import os
 
@@ -18,7 +18,7 @@ from .core.problem import ProblemError, problem_to_scene, scene_to_problem
 def build_problem(context):
     """(problem dict, warnings) for the current scene; raises ProblemError.
 
-    The one place the scene becomes a problem: Export, Check and (later)
+    The one place the scene becomes a problem: Export, Check and
     Generate all start here.
     """
     data, warnings = scene_io.read_scene(context.scene, context.view_layer)

@@ -49,10 +49,20 @@ class SHEETGEN_PT_main(_Panel, bpy.types.Panel):
         row.operator("sheetgen.import_problem", icon='IMPORT', text="Import")
         row.operator("sheetgen.export_problem", icon='EXPORT', text="Export")
         layout.operator("sheetgen.check_problem", icon='CHECKMARK')
-        # Generate lands here with the native generate(): see generate.py.
-        col = layout.column()
-        col.enabled = False
-        col.label(text="Generate: needs the native generate()", icon='MOD_SOLIDIFY')
+        col = layout.column(align=True)
+        row = col.row(align=True)
+        row.prop(p, "chains")
+        row.prop(p, "iterations")
+        row = col.row(align=True)
+        row.prop(p, "beam_width", text="Beam")
+        row.prop(p, "seed")
+        from . import generate
+        run = generate.active_run()
+        if run is not None and run.alive():
+            box = layout.box()
+            box.label(text=run.text(), icon='TIME')
+        else:
+            layout.operator("sheetgen.generate", icon='MOD_SOLIDIFY')
 
 
 class SHEETGEN_PT_rivet_areas(_Panel, bpy.types.Panel):
@@ -150,8 +160,62 @@ class SHEETGEN_PT_search(_Panel, bpy.types.Panel):
             col.prop(p, key)
 
 
+_doc_cache = {}
+
+
+def _run_document(col):
+    """The parsed result.json of a run collection, cached (draw() runs on every redraw)."""
+    from . import results
+    if col is None:
+        return None
+    text = col.get(results.KEY_RESULT)
+    key = (col.name, len(text) if text else 0, hash(text))
+    if key not in _doc_cache:
+        _doc_cache.clear()
+        _doc_cache[key] = results.run_document(col)
+    return _doc_cache[key]
+
+
+class SHEETGEN_PT_results(_Panel, bpy.types.Panel):
+    bl_label = "Results"
+    bl_parent_id = "SHEETGEN_PT_main"
+
+    def draw(self, context):
+        from .core import result as core_result
+        layout = self.layout
+        p = context.scene.sheetgen
+        layout.prop(p, "result_collection", text="Run")
+        doc = _run_document(p.result_collection)
+        if doc is None:
+            layout.label(text="Generate to see results here")
+            return
+        for part in doc.get("parts", []):
+            box = layout.box()
+            if part.get("status") != "ok":
+                box.alert = True
+                box.label(text="%s: no valid part" % part.get("load"), icon='ERROR')
+                if part.get("reason"):
+                    box.label(text=part["reason"])
+                continue
+            box.label(text=part.get("load", "?"), icon='MOD_SOLIDIFY')
+            col = box.column(align=True)
+            values = core_result.report(part)
+            for label, text in core_result.report_rows(part):
+                row = col.split(factor=0.62)
+                if label == "Compliance (J)" and values["compliance_limit"] is not None:
+                    row.alert = values["compliance"] > values["compliance_limit"]
+                if label == "MS" and values["margin_of_safety"] is not None:
+                    row.alert = values["margin_of_safety"] < context.scene.sheetgen.min_margin_of_safety
+                row.label(text=label)
+                row.label(text=text)
+        row = layout.row(align=True)
+        row.operator("sheetgen.export_results", icon='EXPORT', text="Export")
+        row.operator("sheetgen.generate", icon='FILE_REFRESH', text="Re-run")
+        layout.operator("sheetgen.render", icon='RENDER_STILL')
+
+
 CLASSES = (SHEETGEN_UL_rivet_areas, SHEETGEN_PT_main, SHEETGEN_PT_rivet_areas, SHEETGEN_PT_loads,
-           SHEETGEN_PT_material, SHEETGEN_PT_requirements, SHEETGEN_PT_search)
+           SHEETGEN_PT_material, SHEETGEN_PT_requirements, SHEETGEN_PT_search, SHEETGEN_PT_results)
 
 
 def register():

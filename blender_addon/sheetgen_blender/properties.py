@@ -92,6 +92,10 @@ class SheetgenSceneSettings(bpy.types.PropertyGroup):
     threads: IntProperty(name="Threads", default=_S.threads, min=0, max=1024, description="0 = all cores")
     # Manufacturing limits have no UI yet; an imported problem's section is kept verbatim.
     manufacturing_json: StringProperty(name="Manufacturing (JSON)", default="{}")
+    # results: the run collection the Results panel shows (the latest Generate)
+    result_collection: PointerProperty(type=bpy.types.Collection, name="Run",
+                                       description="The sheetgen run collection shown in the Results panel")
+    result_load_index: IntProperty(name="Load", default=0, min=0, description="Load shown in the Results panel")
 
 
 CLASSES = (SheetgenRivetArea, SheetgenObjectSettings, SheetgenSceneSettings)

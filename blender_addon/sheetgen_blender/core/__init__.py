@@ -8,5 +8,8 @@ Blender by ``tests/python/test_addon_core_*.py``:
 - ``problem``: scene data <-> ``sheetgen-problem/1`` dict, with validation
   messages that name the object and the field;
 - ``geometry``: triangle areas, quaternions, float32 number cleaning;
-- ``jsonio``: compact JSON text and atomic file writes.
+- ``jsonio``: compact JSON text and atomic file writes;
+- ``result``: a ``sheetgen-result/1`` document -> plain mesh data (bent part,
+  flat pattern split at its bend lines, rivet markers) and report numbers;
+- ``flatplot``: the flat pattern as a PNG (matplotlib, imported lazily).
 """

@@ -1,0 +1,67 @@
+"""The flat pattern of one part as a PNG, drawn with matplotlib from result.json (no bpy).
+
+Outline filled light grey, reliefs outlined, bend lines dashed (red: down,
+blue: up) with their number and angle, a 50 mm scale bar. matplotlib is
+imported lazily (Agg backend): ``available()`` says whether it is there.
+"""
+import math
+
+
+def available():
+    try:
+        import matplotlib  # noqa: F401
+        return True
+    except ImportError:
+        return False
+
+
+def draw(part, path, width_px=800, height_px=500, dpi=100):
+    """Write the flat pattern of ``part`` (a result.json part with status ok) to ``path`` (PNG)."""
+    import matplotlib
+    matplotlib.use("Agg", force=False)
+    from matplotlib.figure import Figure
+    from matplotlib.backends.backend_agg import FigureCanvasAgg
+    from matplotlib.patches import Polygon
+
+    fp = part["flat_pattern"]
+    mm = 1e3
+    fig = Figure(figsize=(width_px / dpi, height_px / dpi), dpi=dpi)
+    FigureCanvasAgg(fig)
+    ax = fig.add_axes([0.02, 0.02, 0.96, 0.88])
+    ax.set_aspect("equal")
+    ax.axis("off")
+    xs, ys = [], []
+    for ring in fp.get("outline", []):
+        pts = [(x * mm, y * mm) for x, y in ring]
+        xs += [p[0] for p in pts]
+        ys += [p[1] for p in pts]
+        ax.add_patch(Polygon(pts, closed=True, facecolor="#d9dde3", edgecolor="#222222", linewidth=1.2))
+    for rl in fp.get("reliefs", []):
+        pts = [(x * mm, y * mm) for x, y in rl.get("polygon", [])]
+        if pts:
+            ax.add_patch(Polygon(pts, closed=True, facecolor="none", edgecolor="#8a5a00", linewidth=0.8))
+    for b in fp.get("bends", []):
+        (ax_, ay), (bx, by) = b["a"], b["b"]
+        colour = "#c62828" if b.get("direction", "down") == "down" else "#1565c0"
+        ax.plot([ax_ * mm, bx * mm], [ay * mm, by * mm], linestyle=(0, (6, 3)), color=colour, linewidth=1.4)
+        mx, my = (ax_ + bx) / 2 * mm, (ay + by) / 2 * mm
+        L = math.hypot(bx - ax_, by - ay) or 1.0
+        nx, ny = -(by - ay) / L, (bx - ax_) / L   # label beside the line, not on it
+        ax.annotate("%d: %.0f° %s" % (b.get("number", 0), math.degrees(abs(b.get("angle", 0))),
+                                      b.get("direction", "")),
+                    (mx, my), xytext=(14 * nx, 14 * ny), textcoords="offset points",
+                    fontsize=8, color=colour, ha="center", va="center",
+                    bbox=dict(boxstyle="round,pad=0.15", facecolor="white", edgecolor="none", alpha=0.8))
+    if xs:
+        span = max(max(xs) - min(xs), max(ys) - min(ys))
+        pad = 0.06 * span
+        ax.set_xlim(min(xs) - pad, max(xs) + pad)
+        ax.set_ylim(min(ys) - pad, max(ys) + pad)
+        x0, y0 = min(xs), min(ys) - pad * 0.6
+        ax.plot([x0, x0 + 50], [y0, y0], color="black", linewidth=2)
+        ax.annotate("50 mm", (x0 + 25, y0), xytext=(0, 3), textcoords="offset points", ha="center", fontsize=8)
+    fig.suptitle("%s — flat pattern: %.1f cm², %d bends (red down, blue up)"
+                 % (part.get("load", "?"), fp.get("area_m2", part.get("area_m2", 0)) * 1e4,
+                    len(fp.get("bends", []))), fontsize=10)
+    fig.savefig(path, dpi=dpi, facecolor="white")
+    return path
