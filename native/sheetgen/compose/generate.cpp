@@ -8,6 +8,7 @@
 #include <thread>
 #include <unistd.h>
 
+#include "sheetgen/core/cancelled.hpp"
 #include "sheetgen/core/geometry.hpp"
 #include "sheetgen/env/environment.hpp"
 #include "sheetgen/part/exports.hpp"
@@ -93,6 +94,14 @@ GenerateResult generate(const Problem& input, const GenerateOptions& options, Ge
   if (options.beam_width) problem.search.beam_width = *options.beam_width;
   if (options.threads) problem.search.threads = *options.threads;
   if (options.seed) problem.search.seed = *options.seed;
+  if (options.right_angles) {
+    // The expert's practice (paper Sec. 1): every bend 90 deg, no skew. Set as
+    // manufacturing limits, so sampling, optimisation and validity all obey it
+    // (+-0.5 deg and 1 mrad absorb rounding in the angles that are solved for).
+    problem.manufacturing.min_bend_angle = (90.0 - 0.5) * M_PI / 180.0;
+    problem.manufacturing.max_bend_angle = (90.0 + 0.5) * M_PI / 180.0;
+    problem.manufacturing.max_skew = 1e-3;
+  }
   if (progress) progress->loads = static_cast<int>(problem.loads.size());
   CancelRelay relay(progress);
   auto cancelled = [&] { return progress && progress->cancel.load(); };
@@ -108,9 +117,21 @@ GenerateResult generate(const Problem& input, const GenerateOptions& options, Ge
     }
     Problem scene = problem;
     for (const auto& m : earlier_parts) scene.meshes.push_back(m);
-    const Environment env(scene);
+    EnvironmentOptions eo;
+    if (progress) eo.cancel = &progress->cancel;
+    std::unique_ptr<Environment> env_ptr;
+    try {
+      env_ptr = std::make_unique<Environment>(scene, eo);
+    } catch (const Cancelled&) {
+      result.cancelled = true;
+      break;
+    }
+    const Environment& env = *env_ptr;
     out.environment_seconds = seconds_since(load_start);
-    if (cancelled()) break;
+    if (cancelled()) {
+      result.cancelled = true;
+      break;
+    }
 
     // A base tab that is not clear (the load sits in or on an obstacle) cannot
     // carry any part: say so instead of searching.
@@ -137,11 +158,6 @@ GenerateResult generate(const Problem& input, const GenerateOptions& options, Ge
     // Discovery.
     if (progress) progress->stage = static_cast<int>(Stage::Discovery);
     DiscoveryOptions dopt = DiscoveryOptions::from(scene);
-    if (options.right_angles) {
-      dopt.prior.min_bend_angle = M_PI / 2;
-      dopt.prior.max_bend_angle = M_PI / 2;
-      dopt.prior.max_skew = 0;
-    }
     auto t0 = std::chrono::steady_clock::now();
     DiscoveryResult found = discover_segments(scene, env, li, dopt, progress ? &progress->discovery : nullptr);
     out.discovery_seconds = seconds_since(t0);

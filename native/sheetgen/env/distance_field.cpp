@@ -11,6 +11,7 @@
 #include <cstdint>
 #include <mutex>
 
+#include "sheetgen/core/cancelled.hpp"
 #include "sheetgen/core/geometry.hpp"
 
 namespace sheetgen {
@@ -28,6 +29,14 @@ struct MeshAdapter {
     const Vec3& p = mesh->vertices[mesh->triangles[n][v]];
     pos = openvdb::Vec3d(p.x() * inv_voxel, p.y() * inv_voxel, p.z() * inv_voxel);
   }
+};
+
+// OpenVDB's interrupter protocol, reading the caller's cancel flag.
+struct CancelInterrupter {
+  const std::atomic<bool>* flag = nullptr;
+  void start(const char* = nullptr) {}
+  void end() {}
+  bool wasInterrupted(int = -1) const { return flag && flag->load(std::memory_order_relaxed); }
 };
 
 void initialize_openvdb_once() {
@@ -261,9 +270,11 @@ DistanceField::DistanceField(const TriangleMesh& mesh, const DistanceFieldOption
     MeshAdapter adapter{&m.mesh, m.inv_h};
     // Unsigned: meshes may be open. No renormalisation: it smooths values near
     // self-intersections, and we want the exact per-voxel distances.
+    CancelInterrupter interrupter{options.cancel};
     m.dist = openvdb::tools::meshToVolume<openvdb::FloatGrid>(
-        adapter, *transform, static_cast<float>(band_voxels), static_cast<float>(band_voxels),
+        interrupter, adapter, *transform, static_cast<float>(band_voxels), static_cast<float>(band_voxels),
         openvdb::tools::UNSIGNED_DISTANCE_FIELD | openvdb::tools::DISABLE_RENORMALIZATION, m.index.get());
+    if (interrupter.wasInterrupted()) throw Cancelled();
   } else {
     m.dist = openvdb::FloatGrid::create(static_cast<float>(m.band));
     m.dist->setTransform(transform);

@@ -2,6 +2,7 @@
 // Unsigned distance to a triangle mesh, O(1) per query. The one door to OpenVDB
 // (STYLE.md point 5): a narrow-band distance grid plus a closest-triangle index
 // grid. See docs/environment.md for the accuracy contract.
+#include <atomic>
 #include <memory>
 
 #include "sheetgen/core/triangle_mesh.hpp"
@@ -15,6 +16,7 @@ struct DistanceFieldOptions {
                                    // exactly from the closest-triangle index; 0 = 1 voxel
   int exact_fallback_triangles = 512;  // beyond the band, meshes with at most this many
                                        // triangles are answered exactly by brute force
+  const std::atomic<bool>* cancel = nullptr;  // set -> the build stops and throws Cancelled
 };
 
 struct DistanceFieldStats {

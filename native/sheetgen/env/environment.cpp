@@ -52,6 +52,7 @@ Environment::Environment(const Problem& problem, const EnvironmentOptions& optio
   DistanceFieldOptions fo;
   fo.voxel_size = voxel;
   fo.band_voxels = band;
+  fo.cancel = options.cancel;
 
   // Split every environment mesh into its rivet-area faces and the rest.
   const int nra = static_cast<int>(problem_.rivet_areas.size());

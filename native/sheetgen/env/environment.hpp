@@ -2,6 +2,7 @@
 // The environment a part lives in: every obstacle, every rivet area, every load
 // box, and the fast queries the search asks of them. OpenVDB and Embree stay
 // behind DistanceField and RayCaster; this header includes neither.
+#include <atomic>
 #include <memory>
 #include <optional>
 #include <vector>
@@ -16,6 +17,7 @@ class RayCaster;
 struct EnvironmentOptions {
   double voxel_size = 0;  // m; 0 = auto: clamp(t, diag/4096, diag/256), see docs/environment.md
   int band_voxels = 0;    // half-width of the narrow band, voxels; 0 = auto (clearance need + 3)
+  const std::atomic<bool>* cancel = nullptr;  // set during the build -> the constructor throws Cancelled
 };
 
 // Obstacles a polygon may touch without counting as a collision: its own rivet
