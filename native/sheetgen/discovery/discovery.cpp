@@ -5,6 +5,9 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cstdio>
+#include <cstdlib>
+#include <string>
 #include <cmath>
 #include <map>
 #include <stdexcept>
@@ -12,6 +15,7 @@
 
 #include "sheetgen/env/environment.hpp"
 #include "sheetgen/part/validity.hpp"
+#include "sheetgen/part/flat_pattern.hpp"
 
 namespace sheetgen {
 
@@ -439,11 +443,39 @@ void step(Chain& ch, const Context& cx, const std::vector<int>& counts) {
 bool optimise(Candidate& c, const Context& cx, Chain& ch) {
   ++ch.stats.optimised;
   c.optimised = true;
+  // SHEETGEN_DISC_DEBUG=1: one line per optimised candidate on stderr (tabs, summed length, widths per stage).
+  static const bool dbg = std::getenv("SHEETGEN_DISC_DEBUG") != nullptr;
+  auto summary = [](const SegmentWork& w) {
+    double lo = 1e9, hi = 0;
+    for (int i = w.first; i < w.flange; ++i) { lo = std::min(lo, w.part.tabs[i].params.w); hi = std::max(hi, w.part.tabs[i].params.w); }
+    char buf[160];
+    std::snprintf(buf, sizeof buf, "n=%d L=%.0f w=%.0f..%.0f", w.feeler_count(), w.length() * 1e3, lo * 1e3, hi * 1e3);
+    return std::string(buf);
+  };
+  auto why = [&](const SegmentWork& w) {
+    const RealisedPart rp = realise(w.part);
+    const ValidityReport v = check_validity(w.part, rp, cx.env);
+    if (!v.valid()) return std::string("V:") + v.summary();
+    const FlatPattern flat = unfold(w.part, cx.spec);
+    if (!flat.ok()) return std::string("UNFOLD ") + flat.message;
+    const ValidityReport f = check_flat_pattern(flat, cx.spec);
+    if (!f.valid()) return std::string("F:") + f.summary();
+    return std::string("ok");
+  };
+  std::string log;
+  if (dbg) log = "raw " + summary(c.work) + " [" + why(c.work) + "]";
   if (cx.o.optimise) {
-    contract_segment(c.work, cx.env, cx.spec, cx.o.contract);
-    if (merge_coplanar(c.work, cx.env, cx.spec, cx.o.merge) > 0) contract_segment(c.work, cx.env, cx.spec, cx.o.contract);
-    widen_segment(c.work, cx.env, cx.spec, cx.o.widen);
+    const ShortcutResult sr = shortcut_segment(c.work, cx.env, cx.spec, cx.o.shortcut);
+    if (dbg) log += " | shortcut(-" + std::to_string(sr.removed_tabs) + ") " + summary(c.work);
+    const ContractResult cr = contract_segment(c.work, cx.env, cx.spec, cx.o.contract);
+    if (dbg) log += " | contract(" + std::to_string(cr.steps) + (cr.converged ? ",conv" : ",cap") + ") " + summary(c.work);
+    const int merges = merge_coplanar(c.work, cx.env, cx.spec, cx.o.merge);
+    if (merges > 0) contract_segment(c.work, cx.env, cx.spec, cx.o.contract);
+    if (dbg) log += " | merge " + std::to_string(merges) + " " + summary(c.work);
+    const WidenResult wr = widen_segment(c.work, cx.env, cx.spec, cx.o.widen);
+    if (dbg) log += " | widen(" + std::to_string(wr.steps) + ") " + summary(c.work);
   }
+  if (dbg) std::fprintf(stderr, "[seg] chain %d ra %d %s [%s]\n", ch.index, c.segment.rivet_area, log.c_str(), why(c.work).c_str());
   if (!segment_valid(c.work, cx.env, cx.spec)) { ++ch.stats.optimise_failed; return false; }
   Segment s = make_segment(c.work);
   s.parent = c.segment.parent;

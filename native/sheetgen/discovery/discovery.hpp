@@ -46,6 +46,7 @@ struct DiscoveryOptions {
   TargetOptions target;      // alpha, beta, scene unit (Eq. 1-2)
   FeelerPrior prior;
   LibraryOptions library;
+  ShortcutOptions shortcut;
   ContractOptions contract;
   MergeOptions merge;
   WidenOptions widen;

@@ -2,6 +2,10 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <limits>
+#include <string>
 
 #include "sheetgen/env/environment.hpp"
 #include "sheetgen/part/flat_pattern.hpp"
@@ -84,6 +88,8 @@ ContractResult contract_segment(SegmentWork& work, const Environment& env, const
   for (size_t k = 0; k < vars.size(); ++k) scale[k] = vars[k].kind == 0 ? 1.0 : o.angle_scale;
   double step = o.step;
   double energy = work.length();
+  // A raw state that does not unfold (reliefs, flat overlaps) may still contract; widening can repair it.
+  const bool check_unfold = o.check_unfold && segment_valid(work, env, spec);
   int attempts = 0;
   while (attempts < o.max_steps && step >= o.min_step) {
     ++attempts;
@@ -111,8 +117,9 @@ ContractResult contract_segment(SegmentWork& work, const Environment& env, const
       if (apply_vars(next, vars, qn, spec)) {
         const double e = next.length();
         if (e < energy - 1e-9) {
-          const RealisedPart rp = realise(next.part);
-          if (check_validity(next.part, rp, env).valid()) {
+          const bool ok = check_unfold ? segment_valid(next, env, spec)
+                                       : check_validity(next.part, realise(next.part), env).valid();
+          if (ok) {
             work = std::move(next);
             energy = e;
             accepted = true;
@@ -126,7 +133,115 @@ ContractResult contract_segment(SegmentWork& work, const Environment& env, const
     ++r.steps;
     r.lengths.push_back(energy);
     if (o.record_states) r.states.push_back(work.part);
-    step = std::min(o.step, step * 1.5);
+    step = std::min(std::max(o.step, o.max_step), step * 1.5);
+  }
+  r.length_after = work.length();
+  return r;
+}
+
+ShortcutResult shortcut_segment(SegmentWork& work, const Environment& env, const SheetSpec& spec,
+                                const ShortcutOptions& o) {
+  ShortcutResult r;
+  r.length_before = r.length_after = work.length();
+  if (!o.enabled || work.flange != work.part.size() - 1 || work.feeler_count() < 1) return r;
+  const Manufacturing& m = spec.manufacturing;
+  // Shortcuts of a raw state that does not unfold need only be valid in 3D (widening may repair the unfold).
+  const bool check_unfold = segment_valid(work, env, spec);
+  auto acceptable = [&](const SegmentWork& w) {
+    return check_unfold ? segment_valid(w, env, spec) : check_validity(w.part, realise(w.part), env).valid();
+  };
+  // theta3 samples: both signs on [min, max] bend angle; theta2 samples on [-skew/2, skew/2].
+  std::vector<double> bends;
+  const int nb = std::max(2, o.bend_samples);
+  for (int k = 0; k < nb; ++k) {
+    const double a = m.min_bend_angle + (m.max_bend_angle - m.min_bend_angle) * (k + 0.5) / nb;
+    bends.push_back(a);
+    bends.push_back(-a);
+  }
+  std::vector<double> skews;
+  const int ns = std::max(1, o.skew_samples);
+  for (int k = 0; k < ns; ++k) skews.push_back(ns == 1 ? 0.0 : -0.5 * m.max_skew + m.max_skew * k / (ns - 1));
+  // One re-aim: tab k gets (theta2, theta3) and is aimed at the plane; when pre >= 0 the
+  // tab before it (k's parent) first gets (pre_theta3, pre_l).
+  struct Option {
+    double length;
+    double theta2, theta3, pre_theta3, pre_l;
+    int solution;
+  };
+  const double current = work.length();
+  SegmentWork best;
+  double best_length = o.max_length_ratio * current;
+  bool found = false;
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  auto build = [&](const SegmentWork& cut, int k, const Option& op, SegmentWork& out) {
+    out = cut;
+    if (k > cut.first) {
+      TabParameters& q = out.part.tabs[k - 1].params;
+      q.theta3 = op.pre_theta3;
+      q.l = op.pre_l;
+    }
+    TabParameters& p = out.part.tabs[k].params;
+    p.theta2 = op.theta2;
+    p.theta3 = op.theta3;
+    return attach_flange(out.part, k, out.plane, spec, out.flange, nan, op.solution == 1) == out.flange;
+  };
+  for (int k = work.first; k < work.flange && k <= work.first + o.max_depth; ++k) {
+    // The segment truncated after k, the flange hung on k's far edge.
+    SegmentWork cut;
+    cut.plane = work.plane;
+    cut.first = work.first;
+    cut.part.load = work.part.load;
+    cut.part.base = work.part.base;
+    cut.part.tabs.assign(work.part.tabs.begin(), work.part.tabs.begin() + k + 1);
+    Tab fl = work.part.tabs[work.flange];
+    fl.parent = k;
+    fl.parent_edge = kFarEdge;
+    cut.part.tabs.push_back(fl);
+    cut.flange = k + 1;
+    double prefix = 0;  // lengths of the kept tabs before k - 1
+    for (int i = work.first; i < k - 1; ++i) prefix += work.part.tabs[i].params.l;
+    if (prefix >= best_length) break;
+    const TabParameters orig = cut.part.tabs[k].params;
+    std::vector<double> t2s = {orig.theta2}, t3s = bends, pre_t3 = {nan}, pre_l = {nan};
+    t3s.push_back(orig.theta3);
+    if (k == cut.first) {
+      t2s.insert(t2s.end(), skews.begin(), skews.end());
+    } else {
+      const TabParameters& q = cut.part.tabs[k - 1].params;
+      pre_t3 = bends;
+      pre_t3.push_back(q.theta3);
+      pre_l = {q.l};
+      for (double f : {0.25, 0.5, 0.75}) pre_l.push_back(std::max(m.min_tab_length, f * q.l));
+      if (q.l < m.max_tab_length) pre_l.push_back(std::min(m.max_tab_length, std::max(1.5 * q.l, m.min_tab_length)));
+    }
+    std::vector<Option> options;
+    SegmentWork trial;
+    for (double a : pre_t3)
+      for (double pl : pre_l)
+        for (double t2 : t2s)
+          for (double t3 : t3s)
+            for (int sol = 0; sol < 2; ++sol) {
+              Option op{0, t2, t3, a, pl, sol};
+              if (!build(cut, k, op, trial)) continue;
+              op.length = prefix + trial.part.tabs[k].params.l + (k > cut.first ? pl : 0.0);
+              if (op.length < best_length) options.push_back(op);
+            }
+    std::stable_sort(options.begin(), options.end(), [](const Option& a, const Option& b) { return a.length < b.length; });
+    int checks = 0;
+    for (const Option& op : options) {
+      if (checks >= o.max_checks || op.length >= best_length) break;
+      build(cut, k, op, trial);
+      ++checks;
+      if (!acceptable(trial)) continue;
+      best = trial;
+      best_length = op.length;
+      found = true;
+      break;  // options are sorted: the first valid one is this k's shortest
+    }
+  }
+  if (found) {
+    r.removed_tabs = work.feeler_count() - best.feeler_count();
+    work = std::move(best);
   }
   r.length_after = work.length();
   return r;
@@ -221,10 +336,24 @@ WidenResult widen_segment(SegmentWork& work, const Environment& env, const Sheet
           const Vec3 a = cc[ct.parent_edge], b = cc[(ct.parent_edge + 1) % cc.size()];
           next.part.tabs[c].params.d = std::max(0.0, (p0 - a).dot((b - a).normalized()));
         }
+        // The last feeler carries the flange on its far edge: re-attach so the far edge stays
+        // at t/2 from the rivet plane (d moves the root along an edge that need not be parallel
+        // to the plane) and the flange spans the whole widened far edge (no relief needed).
+        const bool carries_flange = i == work.flange - 1 && next.part.tabs[work.flange].parent == i &&
+                                    next.part.tabs[work.flange].parent_edge == kFarEdge;
+        if (carries_flange && o.reattach_flange) {
+          const double prev = next.part.tabs[work.flange].params.theta3;
+          if (attach_flange(next.part, i, next.plane, spec, work.flange, prev) != work.flange) continue;
+        }
         // Only tab i changed (its children kept their roots): check what involves it, and the unfold.
         ValidityOptions vo;
         vo.only_tab = i;
         bool ok = check_validity(next.part, realise(next.part), env, vo).valid();
+        if (ok && carries_flange) {
+          vo.only_tab = work.flange;
+          ok = check_validity(next.part, realise(next.part), env, vo).valid();
+          vo.only_tab = i;
+        }
         if (ok) {
           const FlatPattern flat = unfold(next.part, spec);
           ok = flat.ok() && check_flat_pattern(flat, spec).valid();

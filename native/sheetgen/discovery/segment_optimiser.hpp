@@ -26,12 +26,14 @@ struct SegmentWork {
 };
 
 struct ContractOptions {
-  double step = 4e-3;          // m, initial largest change of one variable per step (angles scaled by angle_scale)
+  double step = 8e-3;          // m, initial largest change of one variable per step (angles scaled by angle_scale)
+  double max_step = 64e-3;     // m, the step grows x1.5 after each accepted step up to this
   double min_step = 0.1e-3;    // m, stop when the step has been halved below this
-  int max_steps = 120;         // accepted + rejected steps
+  int max_steps = 200;         // gradient evaluations (each followed by a halving line search)
   double angle_scale = 0.05;   // m per rad: a bend angle change of 1 rad counts as 5 cm of motion
   double finite_difference = 1e-6;  // m (and m / angle_scale for angles)
   bool record_states = false;  // keep every accepted state (tests)
+  bool check_unfold = true;    // a step must also keep the part unfoldable (when the start state unfolds)
 };
 
 struct ContractResult {
@@ -50,6 +52,27 @@ struct ContractResult {
 ContractResult contract_segment(SegmentWork& work, const Environment& env, const SheetSpec& spec,
                                 const ContractOptions& options = {});
 
+struct ShortcutOptions {
+  bool enabled = true;
+  int bend_samples = 8;        // |theta3| samples on [min_bend_angle, max_bend_angle] per sign (plus the current theta3)
+  int max_depth = 3;           // truncation points tried: the first max_depth + 1 tabs
+  int skew_samples = 3;        // theta2 samples on [-max_skew/2, max_skew/2] (plus the current theta2)
+  int max_checks = 24;         // full validity checks per truncation point (cheapest candidates first)
+  double max_length_ratio = 0.98;  // keep a shortcut only when it is at most this times the current length
+};
+struct ShortcutResult {
+  int removed_tabs = 0;        // feeler tabs dropped
+  double length_before = 0, length_after = 0;  // m
+};
+// Re-aiming (the large-scale part of the contraction): for every tab k of the
+// segment, drops the tabs after k and re-aims k (theta2, theta3 sampled, then
+// (l, theta1) and the flange from attach_flange) straight at the rivet plane;
+// the shortest state that is valid and unfolds replaces the segment when it is
+// at most max_length_ratio times as long. A feeler route that hugged obstacles
+// tab by tab becomes a direct one the spring contraction then polishes.
+ShortcutResult shortcut_segment(SegmentWork& work, const Environment& env, const SheetSpec& spec,
+                                const ShortcutOptions& options = {});
+
 struct MergeOptions {
   double max_angle = -1;  // rad, merge a child bent by at most this; < 0 = 1.5 * min_bend_angle
   double max_length_growth = 0.05;  // accept a merge that lengthens the segment by at most 5 %
@@ -62,6 +85,7 @@ int merge_coplanar(SegmentWork& work, const Environment& env, const SheetSpec& s
 struct WidenOptions {
   double initial_step = 16e-3;  // m, first widening per step; halved after a failed step
   double min_step = 2e-3;       // m, stop when the step falls below this
+  bool reattach_flange = true;  // widening the last feeler re-attaches it and spans the flange over its far edge
 };
 struct WidenResult {
   int steps = 0;                     // accepted widenings

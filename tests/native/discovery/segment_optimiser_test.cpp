@@ -58,6 +58,51 @@ TEST(SegmentOptimiser, ContractionShortensZigZagAndStaysValid) {
   EXPECT_LT(r.length_after, 0.9 * r.length_before);
 }
 
+// The whole Sec. 4.2 pipeline as discovery runs it on a three-tab zig-zag feeler
+// route to the wall: re-aiming (shortcut), contraction, merging, widening.
+TEST(SegmentOptimiser, ZigZagBecomesShortAndWide) {
+  const Problem problem = wall_problem();
+  const Environment env(problem);
+  const SheetSpec spec = SheetSpec::from(problem);
+  SegmentWork w;
+  w.plane = wall_plane();
+  w.part = make_base_part(problem.loads[0], 0, spec.thickness);
+  w.first = 1;
+  // From base edge 3 (x = 0, y 0..40 mm): up 40 deg for 80 mm, down 80 deg for 60 mm, up 50 deg to the wall.
+  const int a = w.part.add_tab(0, 3, {0.012, 0.016, 0.08, 0, 0, 40 * kDeg});
+  const int b = w.part.add_tab(a, kFarEdge, {0.0, 0.016, 0.06, 0, 0, -80 * kDeg});
+  const int c = w.part.add_tab(b, kFarEdge, {0.0, 0.016, 0.05, 0, 0, 50 * kDeg});
+  w.flange = attach_flange(w.part, c, w.plane, spec);
+  ASSERT_EQ(w.flange, 4);
+  ASSERT_TRUE(segment_valid(w, env, spec)) << check_validity(w.part, realise(w.part), env).summary();
+  const double raw = w.length();
+  const ShortcutResult sr = shortcut_segment(w, env, spec);
+  const ContractResult cr = contract_segment(w, env, spec);
+  if (merge_coplanar(w, env, spec) > 0) contract_segment(w, env, spec);
+  const WidenResult wr = widen_segment(w, env, spec);
+  double w_min = 1;
+  for (int i = w.first; i < w.flange; ++i) w_min = std::min(w_min, w.part.tabs[i].params.w);
+  // Straight-line distance from the root edge (x = 0) to the far edge's plane x = -0.2 + t/2.
+  const double straight = 0.2 - spec.thickness / 2;
+  std::printf("zig-zag: %d tabs %.1f mm -> shortcut %d tabs %.1f mm -> contraction %.1f mm (%d steps); "
+              "straight %.1f mm; narrowest tab %.1f mm, area %.0f -> %.0f mm^2\n",
+              3, raw * 1e3, w.feeler_count(), sr.length_after * 1e3, cr.length_after * 1e3, cr.steps, straight * 1e3,
+              w_min * 1e3, wr.area_before * 1e6, wr.area_after * 1e6);
+  EXPECT_TRUE(segment_valid(w, env, spec));
+  EXPECT_EQ(w.part.tabs[w.flange].rivet_area, 0);
+  // Short: one tab bent by theta3 >= min_bend_angle (5 deg) must be at least straight / cos(5 deg)
+  // = 1.004 x straight long; 1.05 leaves room for the contraction's 0.1 mm stopping step and the
+  // bend geometry, and is well below the raw zig-zag (233 mm = 1.17 x straight).
+  EXPECT_GT(raw, 1.15 * straight);
+  EXPECT_LT(w.feeler_count(), 3);
+  EXPECT_LE(w.length(), 1.05 * straight);
+  EXPECT_GE(w.length(), straight - 1e-9);
+  // Wide: nothing is in the way, so every tab widens over most of its 40 mm parent edge; at least
+  // twice w_min (32 mm) allows for the 2 mm minimum widening step and the bend relief rules.
+  EXPECT_GE(w_min, 2 * spec.manufacturing.min_tab_width);
+  EXPECT_GT(wr.area_after, 2 * wr.area_before);
+}
+
 TEST(SegmentOptimiser, WideningStopsAtAWall) {
   Problem problem = wall_problem();
   // A plain plate (not a rivet area) in the plane y = 32 mm beside the tab's path.
