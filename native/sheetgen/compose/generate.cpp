@@ -102,6 +102,8 @@ GenerateResult generate(const Problem& input, const GenerateOptions& options, Ge
     problem.manufacturing.max_bend_angle = (90.0 + 0.5) * M_PI / 180.0;
     problem.manufacturing.max_skew = 1e-3;
   }
+  result.search = problem.search;
+  result.right_angles = options.right_angles;
   if (progress) progress->loads = static_cast<int>(problem.loads.size());
   CancelRelay relay(progress);
   auto cancelled = [&] { return progress && progress->cancel.load(); };
@@ -279,8 +281,9 @@ nlohmann::json result_json(const Problem& problem, const GenerateResult& result,
   doc["format"] = "sheetgen-result/1";
   doc["problem"] = problem_ref;
   doc["parts"] = parts;
-  doc["search"] = {{"chains", problem.search.chains}, {"iterations", problem.search.iterations},
-                   {"beam_width", problem.search.beam_width}, {"seed", problem.search.seed}};
+  doc["search"] = {{"chains", result.search.chains},         {"iterations", result.search.iterations},
+                   {"beam_width", result.search.beam_width}, {"seed", result.search.seed},
+                   {"threads", result.search.threads},       {"right_angles", result.right_angles}};
   doc["timing"] = {{"total_s", result.seconds}};
   return doc;
 }

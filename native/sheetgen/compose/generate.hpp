@@ -56,6 +56,8 @@ struct LoadOutcome {
 
 struct GenerateResult {
   std::vector<LoadOutcome> loads;
+  SearchSettings search;              // the settings used (the problem's, with the options' overrides)
+  bool right_angles = false;
   bool cancelled = false;
   double seconds = 0;
   bool all_ok() const;
