@@ -46,9 +46,22 @@ Environment::Environment(const Problem& problem, const EnvironmentOptions& optio
   const double t = problem_.material.thickness;
   // Voxel: the sheet thickness, kept between diag/4096 (bounded grid size on
   // big scenes) and diag/256 (enough voxels across a tiny scene).
-  const double voxel = options.voxel_size > 0 ? options.voxel_size : std::max(diag / 4096.0, std::min(t, diag / 256.0));
+  double voxel = options.voxel_size > 0 ? options.voxel_size : std::max(diag / 4096.0, std::min(t, diag / 256.0));
   const double required = 0.5 * t + problem_.requirements.clearance;
-  const int band = options.band_voxels > 0 ? options.band_voxels : static_cast<int>(std::ceil(required / voxel)) + 3;
+  int band = options.band_voxels > 0 ? options.band_voxels : static_cast<int>(std::ceil(required / voxel)) + 3;
+  if (options.voxel_size <= 0) {
+    // Memory budget: a narrow band holds about area / h^2 * 2 band voxels (8 bytes
+    // each with the index grid). Keep it under kMaxBandVoxels; a huge scene gets
+    // coarser voxels (the contact test stays exact near surfaces, docs/environment.md).
+    constexpr double kMaxBandVoxels = 4.0e7;  // ~320 MB of grids
+    double area = 0;
+    for (const auto& m : problem_.meshes) area += m.mesh.area();
+    const double h_budget = std::sqrt(area * 2.0 * band / kMaxBandVoxels);
+    if (h_budget > voxel) {
+      voxel = h_budget;
+      band = static_cast<int>(std::ceil(required / voxel)) + 3;
+    }
+  }
   DistanceFieldOptions fo;
   fo.voxel_size = voxel;
   fo.band_voxels = band;
