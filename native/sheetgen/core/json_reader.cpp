@@ -1,5 +1,6 @@
 #include "sheetgen/core/json_reader.hpp"
 
+#include <climits>
 #include <cmath>
 #include <cstring>
 
@@ -63,8 +64,9 @@ std::string JsonNode::as_string() const {
 }
 
 double JsonNode::as_number() const {
-  // nlohmann parses the non-standard tokens NaN/Infinity as errors, but a huge
-  // literal such as 1e999 becomes inf: both end here as "not a finite number".
+  // NaN/Infinity tokens arrive as marked strings (problem.cpp); a literal such
+  // as 1e999 is already refused by the parser (number overflow). Both are
+  // "not a finite number"; the isfinite check below is the last line of defence.
   if (value_->is_string()) {
     const std::string& str = value_->get_ref<const std::string&>();
     if (str.rfind(kNonFiniteMarker, 0) == 0) fail("expected a finite number, got " + str.substr(std::strlen(kNonFiniteMarker)));
@@ -89,6 +91,9 @@ double JsonNode::as_non_negative() const {
 
 long long JsonNode::as_integer() const {
   if (!value_->is_number_integer()) fail("expected an integer, got " + (value_->is_number() ? value_->dump() : type_name()));
+  // 2^63 and above are stored unsigned: converting would wrap to a negative index.
+  if (value_->is_number_unsigned() && value_->get<unsigned long long>() > static_cast<unsigned long long>(LLONG_MAX))
+    fail("integer " + value_->dump() + " is too large");
   return value_->get<long long>();
 }
 

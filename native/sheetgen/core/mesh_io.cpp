@@ -4,7 +4,9 @@
 #include <cctype>
 #include <cmath>
 #include <cstring>
+#include <filesystem>
 #include <fstream>
+#include <limits>
 #include <sstream>
 
 #include "sheetgen/core/input_error.hpp"
@@ -13,13 +15,31 @@ namespace sheetgen {
 
 namespace {
 
+// Mesh files are read whole; a cap keeps a huge (or sparse, truncate-made)
+// file from exhausting memory. 2 GiB is ~90 M triangles of binary PLY.
+constexpr std::uintmax_t kMaxMeshBytes = 2048ull << 20;
+
 std::string read_file(const std::string& path, const std::string& name) {
   std::ifstream in(path, std::ios::binary);
   if (!in) throw InputError(name, "", "cannot open the mesh file (" + std::string(std::strerror(errno)) + ")");
-  std::ostringstream ss;
-  ss << in.rdbuf();
+  std::error_code ec;
+  const std::uintmax_t size = std::filesystem::file_size(std::filesystem::u8path(path), ec);
+  if (!ec && size > kMaxMeshBytes)
+    throw InputError(name, "", "is " + std::to_string(size >> 20) + " MiB; mesh files are limited to " +
+                                   std::to_string(kMaxMeshBytes >> 20) + " MiB");
+  std::string bytes;
+  if (!ec) {
+    // Read straight into one buffer (a stringstream would hold the file twice).
+    bytes.resize(static_cast<size_t>(size));
+    in.read(bytes.data(), static_cast<std::streamsize>(size));
+    bytes.resize(static_cast<size_t>(in.gcount()));
+  } else {
+    std::ostringstream ss;
+    ss << in.rdbuf();
+    bytes = ss.str();
+  }
   if (in.bad()) throw InputError(name, "", "cannot read the mesh file");
-  return ss.str();
+  return bytes;
 }
 
 std::string lower_extension(const std::string& path) {
@@ -52,16 +72,24 @@ bool parse_long(const std::string& token, long long& out) {
 
 TriangleMesh parse_obj(const std::string& text, const std::string& name) {
   TriangleMesh mesh;
-  std::istringstream in(text);
-  std::string line;
   size_t line_no = 0;
   std::vector<int> poly;
-  while (std::getline(in, line)) {
+  // Lines are found in place and only "v" and "f" lines are copied: a stream
+  // over the text plus getline copies held a 1 GiB one-line file five times.
+  auto space = [](char c) { return std::isspace(static_cast<unsigned char>(c)) != 0; };
+  for (size_t pos = 0; pos < text.size();) {
+    size_t end = text.find('\n', pos);
+    if (end == std::string::npos) end = text.size();
+    const size_t begin = pos;
+    pos = end + 1;
     ++line_no;
-    if (!line.empty() && line.back() == '\r') line.pop_back();
-    std::istringstream ls(line);
-    std::string tag;
-    if (!(ls >> tag) || tag[0] == '#') continue;
+    size_t t0 = begin;
+    while (t0 < end && space(text[t0])) ++t0;
+    size_t t1 = t0;
+    while (t1 < end && !space(text[t1])) ++t1;
+    const std::string tag = t1 - t0 == 1 ? text.substr(t0, 1) : std::string();
+    if (tag != "v" && tag != "f") continue;  // comments, empty lines and records we do not need
+    std::istringstream ls(text.substr(t1, end - t1));
     if (tag == "v") {
       Vec3 p;
       for (int k = 0; k < 3; ++k) {
@@ -232,7 +260,8 @@ TriangleMesh parse_ply(const std::string& bytes, const std::string& name) {
   }
 
   TriangleMesh mesh;
-  std::istringstream ascii_in(ascii ? bytes.substr(pos) : std::string());
+  // pos is one past the end when "end_header" is the last line without a newline.
+  std::istringstream ascii_in(ascii ? bytes.substr(std::min(pos, bytes.size())) : std::string());
   const uint16_t probe = 1;
   unsigned char first_byte;
   std::memcpy(&first_byte, &probe, 1);
@@ -256,6 +285,9 @@ TriangleMesh parse_ply(const std::string& bytes, const std::string& name) {
       if (e.properties[k].name == "z") iz = k;
     }
     if (is_vertex && (ix < 0 || iy < 0 || iz < 0)) throw InputError(name, "element vertex", "needs x, y and z properties");
+    // An element without properties occupies no bytes: nothing to read, and
+    // looping over a declared count of 2^62 such entries would hang.
+    if (e.properties.empty()) continue;
     if (is_vertex) mesh.vertices.reserve(e.count);
     std::vector<int> poly;
     for (size_t i = 0; i < e.count; ++i) {
@@ -269,7 +301,16 @@ TriangleMesh parse_ply(const std::string& bytes, const std::string& name) {
           poly.clear();
           for (int j = 0; j < static_cast<int>(n); ++j) {
             double idx = read_value(prop.type, where);
-            if (is_face && (prop.name == "vertex_indices" || prop.name == "vertex_index")) poly.push_back(static_cast<int>(idx));
+            if (is_face && (prop.name == "vertex_indices" || prop.name == "vertex_index")) {
+              // Checked before the cast: a uint 4e9, a float 1e30 or NaN would not fit an int.
+              if (!(idx >= 0 && idx <= std::numeric_limits<int>::max() && idx == std::floor(idx))) {
+                std::ostringstream v;
+                v.precision(17);
+                v << idx;
+                throw InputError(name, where, "vertex index " + v.str() + " is not a valid index");
+              }
+              poly.push_back(static_cast<int>(idx));
+            }
           }
           if (is_face && (prop.name == "vertex_indices" || prop.name == "vertex_index")) {
             if (poly.size() < 3) throw InputError(name, where, "face has fewer than 3 vertices");

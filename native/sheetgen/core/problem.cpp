@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cstring>
 #include <cmath>
+#include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <set>
@@ -229,8 +230,11 @@ void parse_loads(const JsonNode& root, Problem& p) {
       if (!rot->raw().is_array() || rot->raw().size() != 4) rot->fail("expected a quaternion [w, x, y, z]");
       double q[4];
       for (int k = 0; k < 4; ++k) q[k] = rot->at(k).as_number();
-      Eigen::Quaterniond quat(q[0], q[1], q[2], q[3]);
-      if (!(quat.norm() > 1e-12)) rot->fail("quaternion has zero length");
+      // Scale by the largest component first: squaring 1e200 overflows to inf
+      // (normalized() would return a zero quaternion) and 1e-200 underflows to 0.
+      const double big = std::max({std::abs(q[0]), std::abs(q[1]), std::abs(q[2]), std::abs(q[3])});
+      if (!(big > 0)) rot->fail("quaternion has zero length");
+      Eigen::Quaterniond quat(q[0] / big, q[1] / big, q[2] / big, q[3] / big);
       load.rotation = quat.normalized();
     }
     const JsonNode force = l.at("force");
@@ -321,6 +325,28 @@ void parse_settings(const JsonNode& root, Problem& p) {
   }
 }
 
+// A scene exported from a CAD or Blender file in millimetres reads as a scene
+// a thousand times too big: a 160 mm box becomes 160 m. Metre-scale brackets
+// never hold a box larger than 10 m in a scene spanning over 100 m, so that
+// combination is refused with the likely cause (docs/reliability.md).
+void check_scale(const JsonNode& root, const Problem& p) {
+  constexpr double kMaxSceneDiagonal = 100.0;  // m
+  constexpr double kMaxLoadSize = 10.0;        // m, largest box extent
+  const double diagonal = p.bounds().diagonal();
+  if (!(diagonal > kMaxSceneDiagonal)) return;
+  for (size_t i = 0; i < p.loads.size(); ++i) {
+    const double largest = p.loads[i].size.maxCoeff();
+    if (largest > kMaxLoadSize) {
+      char buf[256];
+      std::snprintf(buf, sizeof buf,
+                    "load box is %.4g m across in a scene %.4g m across: the file looks like it is in millimetres "
+                    "(problem files are in metres; scale the scene by 0.001)",
+                    largest, diagonal);
+      root.at("loads").at(i).at("size").fail(buf);
+    }
+  }
+}
+
 }  // namespace
 
 namespace {
@@ -366,8 +392,9 @@ Problem parse_problem(const std::string& json_text, const std::string& source, c
   nlohmann::json doc;
   try {
     doc = nlohmann::json::parse(mark_non_finite_tokens(json_text));
-  } catch (const nlohmann::json::parse_error& e) {
-    // e.what() carries byte position and reason; keep the part after the id.
+  } catch (const nlohmann::json::exception& e) {
+    // parse_error, and out_of_range 406 for a number literal beyond double
+    // (1e999). e.what() carries byte position and reason; keep the part after the id.
     std::string what = e.what();
     auto pos = what.find("] ");
     throw InputError(source, "", "is not valid JSON (" + (pos == std::string::npos ? what : what.substr(pos + 2)) + ")");
@@ -387,6 +414,7 @@ Problem parse_problem(const std::string& json_text, const std::string& source, c
   parse_meshes(root, base_dir, p);
   parse_rivet_areas(root, p);
   parse_loads(root, p);
+  check_scale(root, p);
   return p;
 }
 
