@@ -115,6 +115,48 @@ class HardCases(unittest.TestCase):
         leftovers = [f for f in os.listdir(out)] if os.path.isdir(out) else []
         self.assertEqual([f for f in leftovers if not f.startswith(".sheetgen-staging")], [])
 
+    def test_ten_thousand_loads_progress_and_cancel_within_a_second(self):
+        # 100 x 100 small boxes over a 6 m floor: check is fast, solve starts on
+        # load 1, and Ctrl-C ends it within a second, writing nothing.
+        loads = [{"name": "box%05d" % (i * 100 + j), "center": [0.03 + 0.06 * i, -2.97 + 0.06 * j, 0.2],
+                  "size": [0.03, 0.03, 0.02], "force": [0, 0, -10]} for i in range(100) for j in range(100)]
+        prob = floor_and_wall(loads=loads)
+        prob["environment"]["meshes"][0]["vertices"] = [[0, -3, 0], [6, -3, 0], [6, 3, 0], [0, 3, 0]]
+        d = tempfile.mkdtemp(prefix="sheetgen_10k_")
+        path = os.path.join(d, "problem.json")
+        json.dump(prob, open(path, "w"))
+        t0 = time.monotonic()
+        chk = subprocess.run([SHEETGEN, "check", path], capture_output=True, text=True)
+        self.assertEqual(chk.returncode, 0, chk.stderr)
+        self.assertIn("loads: 10000", chk.stdout)
+        print("check of 10 000 loads: %.2f s" % (time.monotonic() - t0))
+        out = os.path.join(d, "out")
+        proc = subprocess.Popen([SHEETGEN, "solve", path, "--out", out, "--threads", "2"], stdout=subprocess.PIPE,
+                                stderr=subprocess.PIPE, text=True)
+        time.sleep(4.0)
+        self.assertIsNone(proc.poll())
+        t1 = time.monotonic()
+        proc.send_signal(signal.SIGINT)
+        _, err = proc.communicate(timeout=30)
+        waited = time.monotonic() - t1
+        print("cancel of a 10 000-load solve: %.3f s" % waited)
+        self.assertEqual(proc.returncode, 130, err)
+        self.assertLess(waited, 1.0)
+        self.assertFalse(os.path.exists(os.path.join(out, "result.json")))
+
+    def test_exception_in_a_worker_thread_reaches_the_caller(self):
+        # SHEETGEN_INJECT_FAULT=composition throws inside a TBB composition task.
+        prob = floor_and_wall()
+        d = tempfile.mkdtemp(prefix="sheetgen_fault_")
+        path = os.path.join(d, "problem.json")
+        json.dump(prob, open(path, "w"))
+        out = os.path.join(d, "out")
+        p = subprocess.run([SHEETGEN, "solve", path, "--out", out] + QUICK, capture_output=True, text=True,
+                           env=dict(os.environ, SHEETGEN_INJECT_FAULT="composition"))
+        self.assertEqual(p.returncode, 3, p.stderr)
+        self.assertEqual(p.stderr.strip(), "sheetgen: internal error: injected fault in a composition worker")
+        self.assertFalse(os.path.exists(os.path.join(out, "result.json")))
+
     def test_unwritable_output_is_an_error_not_a_half_written_folder(self):
         # --out names an existing regular file: the folder cannot be made (this works as root too,
         # where permission bits would not stop a write).

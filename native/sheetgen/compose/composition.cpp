@@ -6,6 +6,8 @@
 #include <tbb/task_arena.h>
 
 #include <algorithm>
+#include <cstdlib>
+#include <cstring>
 #include <chrono>
 #include <cmath>
 #include <map>
@@ -150,6 +152,10 @@ ComposeResult compose_part(const Problem& problem, const Environment& env, int l
     arena.execute([&] {
       tbb::parallel_for(size_t(0), subsets.size(), [&](size_t i) {
         if (progress && progress->cancel.load()) return;
+        // Fault injection for the reliability tests: an exception on a worker
+        // thread must reach the caller as an error (TBB rethrows it there).
+        static const char* inject = std::getenv("SHEETGEN_INJECT_FAULT");
+        if (inject && std::strcmp(inject, "composition") == 0) throw std::runtime_error("injected fault in a composition worker");
         Part probe = assemble_part(base, library, subsets[i]);
         double h = search_h;
         if (!(h > 0)) {

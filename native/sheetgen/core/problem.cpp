@@ -206,6 +206,38 @@ void parse_rivet_areas(const JsonNode& root, Problem& p) {
     ra.faces.erase(std::unique(ra.faces.begin(), ra.faces.end()), ra.faces.end());
     for (int f : ra.faces) ra.area_m2 += target.face_area(f);
     if (!(ra.area_m2 > 0)) faces.fail("rivet area '" + ra.name + "' has zero area (degenerate faces)");
+    // A rivet flange is flat: it can lie flush only on a planar area. Faces
+    // whose normals stray more than 10 degrees from the area's mean normal
+    // (either side: an open mesh may be wound either way) mean two planes or a
+    // curved patch - ask for one area per plane instead of guessing.
+    Vec3 mean = Vec3::Zero();
+    for (int f : ra.faces) {
+      Vec3 n = target.face_normal(f) * target.face_area(f);
+      if (mean.dot(n) < 0) n = -n;
+      mean += n;
+    }
+    if (mean.norm() > 0) {
+      mean.normalize();
+      double worst = 0;
+      for (int f : ra.faces) {
+        const Vec3 n = target.face_normal(f);
+        if (n.norm() == 0) continue;
+        worst = std::max(worst, std::acos(std::min(1.0, std::abs(n.dot(mean)))));
+      }
+      constexpr double kMaxPlanarDeviation = 10.0 * M_PI / 180.0;
+      if (worst > kMaxPlanarDeviation)
+        faces.fail("rivet area '" + ra.name + "' is not planar (its faces differ by up to " +
+                   std::to_string(static_cast<int>(std::lround(worst * 180 / M_PI))) +
+                   " degrees from their mean plane); a flange lies flat, so split it into one rivet area per plane");
+    }
+    // The smallest flange (min_flange long, min_tab_width wide) must fit at least by area.
+    const double flange = p.manufacturing.min_flange * p.manufacturing.min_tab_width;
+    if (ra.area_m2 < flange) {
+      char buf[160];
+      std::snprintf(buf, sizeof buf, "rivet area '%s' is %.2f cm^2, smaller than the smallest rivet flange (%.1f x %.1f mm = %.2f cm^2)",
+                    ra.name.c_str(), ra.area_m2 * 1e4, p.manufacturing.min_flange * 1e3, p.manufacturing.min_tab_width * 1e3, flange * 1e4);
+      faces.fail(buf);
+    }
     p.rivet_areas.push_back(std::move(ra));
   }
 }

@@ -173,3 +173,41 @@ TEST(Problem, LoadBoxGeometry) {
 
 }  // namespace
 }  // namespace sheetgen
+
+namespace sheetgen {
+namespace {
+
+// Rivet areas a flange cannot use are refused with the reason (issue 9).
+TEST(Problem, NonPlanarAndTooSmallRivetAreasAreRefused) {
+  // Two faces of a 90-degree corner in one rivet area.
+  json bent = json::parse(R"({
+    "format": "sheetgen-problem/1",
+    "environment": {"meshes": [{"name": "corner", "vertices": [[0,0,0],[0.2,0,0],[0.2,0.2,0],[0,0.2,0],[0,0,0.2],[0,0.2,0.2]],
+                                "triangles": [[0,1,2],[0,3,4],[3,5,4]]}]},
+    "rivet_areas": [{"name": "bent", "mesh": "corner", "faces": [0, 1]}],
+    "loads": [{"name": "box", "center": [0.1, 0.1, 0.2], "size": [0.1, 0.1, 0.1], "force": [0, 0, -100]}]
+  })");
+  try {
+    parse_problem(bent.dump(), "p.json", ".");
+    FAIL() << "accepted a bent rivet area";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("rivet area 'bent' is not planar (its faces differ by up to 45 degrees"), std::string::npos) << e.what();
+  }
+  // Each face alone is planar and large enough (0.02 m^2): accepted.
+  bent["rivet_areas"][0]["faces"] = {0};
+  EXPECT_NO_THROW(parse_problem(bent.dump(), "p.json", "."));
+  // A 10 x 10 mm area: smaller than one flange (12.8 x 16 mm = 2.05 cm^2 by default).
+  json tiny = bent;
+  tiny["environment"]["meshes"][0]["vertices"] = {{0, 0, 0}, {0.01, 0, 0}, {0.01, 0.01, 0}, {0, 0.01, 0}, {0, 0, 0.2}, {0, 0.2, 0.2}};
+  try {
+    parse_problem(tiny.dump(), "p.json", ".");
+    FAIL() << "accepted a rivet area smaller than a flange";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("is 0.50 cm^2, smaller than the smallest rivet flange (12.8 x 16.0 mm = 2.05 cm^2)"),
+              std::string::npos)
+        << e.what();
+  }
+}
+
+}  // namespace
+}  // namespace sheetgen
