@@ -1,0 +1,195 @@
+#!/usr/bin/python3
+"""Solves the whole scene library with one command, verifies every output with
+tests/python/verify_result.py and prints a table (issue 8).
+
+    /usr/bin/python3 scripts/solve_all.py                      # default settings (10 chains x 1000 iterations)
+    /usr/bin/python3 scripts/solve_all.py --quick              # 6 chains x 300 iterations, for scene design
+    /usr/bin/python3 scripts/solve_all.py --scenes shelf,maze --chains 4 --iterations 200
+    /usr/bin/python3 scripts/solve_all.py --no-solve           # re-verify and re-print existing outputs
+
+Writes out/<scene>/ (sheetgen's result.json and per-load folders, plus solve.log,
+verify.log and run.json with the wall time, exit code and verify status) and
+out/summary.json (the table's rows, read by scripts/make_report.py). The
+avionics bay is solved twice: as given, and with --right-angles (the expert's
+practice of the paper's Sec. 6.2) into out/avionics_bay_right_angles/.
+Solves run one at a time (the machine is shared); --threads defaults to 2.
+Exit 0 when every run finished (exit 0 or 2 of sheetgen) and every produced
+part passed verification; 1 otherwise. Loads without a part are reported in the
+table ("loads ok" column and the reasons below it), not counted as failures.
+"""
+import argparse
+import json
+import os
+import subprocess
+import sys
+import time
+
+ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+SHEETGEN = os.path.join(ROOT, "build", "native", "cli", "sheetgen")
+VERIFY = os.path.join(ROOT, "tests", "python", "verify_result.py")
+
+# The library in order of difficulty (docs/scenes.md). (run name, scene folder, extra sheetgen flags)
+RUNS = [
+    ("shelf", "shelf", []),
+    ("corner", "corner", []),
+    ("wall_standoff", "wall_standoff", []),
+    ("corner_obstacle", "corner_obstacle", []),
+    ("slanted", "slanted", []),
+    ("sharp_angles", "sharp_angles", []),
+    ("boxed_in", "boxed_in", []),
+    ("bulkhead_hole", "bulkhead_hole", []),
+    ("maze", "maze", []),
+    ("avionics_bay", "avionics_bay", []),
+    ("avionics_bay_right_angles", "avionics_bay", ["--right-angles"]),
+]
+
+
+def summarise(run, out_dir, wall_s, exit_code, verify_status):
+    """One table row from a run's result.json (totals over loads)."""
+    row = {"run": run, "wall_s": wall_s, "exit": exit_code, "verify": verify_status, "loads": 0, "ok": 0,
+           "area_m2": 0.0, "mass_kg": 0.0, "bends": 0, "worst_c_ratio": None, "min_ms": None, "solver_s": None,
+           "failures": []}
+    path = os.path.join(out_dir, "result.json")
+    if not os.path.exists(path):
+        return row
+    res = json.load(open(path))
+    row["solver_s"] = res.get("timing", {}).get("total_s")
+    row["settings"] = res.get("search")
+    for p in res["parts"]:
+        row["loads"] += 1
+        if p["status"] != "ok":
+            row["failures"].append({"load": p["load"], "reason": p.get("reason", "")})
+            continue
+        row["ok"] += 1
+        row["area_m2"] += p["area_m2"]
+        row["mass_kg"] += p["mass_kg"]
+        row["bends"] += p["bends"]
+        ratio = p["compliance"] / p["compliance_limit"]
+        row["worst_c_ratio"] = ratio if row["worst_c_ratio"] is None else max(row["worst_c_ratio"], ratio)
+        ms = p["margin_of_safety"]
+        row["min_ms"] = ms if row["min_ms"] is None else min(row["min_ms"], ms)
+    return row
+
+
+def fmt_row(r):
+    def f(v, spec):
+        return "-" if v is None else format(v, spec)
+    ok = "%d/%d" % (r["ok"], r["loads"]) if r["loads"] else "-"
+    area = f(r["area_m2"] * 1e4, ".0f") if r["ok"] else "-"
+    mass = f(r["mass_kg"], ".3f") if r["ok"] else "-"
+    bends = str(r["bends"]) if r["ok"] else "-"
+    return [r["run"], ok, area, mass, bends, f(r["worst_c_ratio"], ".3f"), f(r["min_ms"], ".3f"),
+            f(r["wall_s"], ".0f"), r["verify"]]
+
+
+HEADER = ["scene", "loads ok", "area cm2", "mass kg", "bends", "C/Cmax", "MS", "wall s", "verify"]
+
+
+def print_table(rows):
+    table = [HEADER] + [fmt_row(r) for r in rows]
+    widths = [max(len(str(t[i])) for t in table) for i in range(len(HEADER))]
+    for k, t in enumerate(table):
+        print("  ".join(str(c).ljust(widths[i]) if i == 0 or i == len(HEADER) - 1 else str(c).rjust(widths[i])
+                        for i, c in enumerate(t)))
+        if k == 0:
+            print("  ".join("-" * w for w in widths))
+    print("(area, mass, bends: sums over the loads with a part; C/Cmax: worst load; MS: lowest load)")
+    for r in rows:
+        for fl in r["failures"]:
+            print("no part: %s/%s: %s" % (r["run"], fl["load"], fl["reason"]))
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    ap.add_argument("--out", default=os.path.join(ROOT, "out"), help="output root (default out/)")
+    ap.add_argument("--scenes", help="comma-separated run names (default: all): " + ",".join(r[0] for r in RUNS))
+    ap.add_argument("--chains", type=int, help="override search.chains")
+    ap.add_argument("--iterations", type=int, help="override search.iterations")
+    ap.add_argument("--seed", type=int, help="override search.seed")
+    ap.add_argument("--quick", action="store_true", help="--chains 6 --iterations 300 (scene design)")
+    ap.add_argument("--threads", type=int, default=2)
+    ap.add_argument("--no-solve", action="store_true", help="only verify and tabulate existing outputs")
+    ap.add_argument("--no-ccx", action="store_true", help="pass --no-ccx to verify_result.py")
+    ap.add_argument("--sheetgen", default=SHEETGEN)
+    args = ap.parse_args()
+    if args.quick:
+        args.chains = args.chains or 6
+        args.iterations = args.iterations or 300
+    runs = RUNS
+    if args.scenes:
+        want = args.scenes.split(",")
+        unknown = set(want) - {r[0] for r in RUNS}
+        if unknown:
+            ap.error("unknown scene(s): " + ", ".join(sorted(unknown)))
+        runs = [r for r in RUNS if r[0] in want]
+    if not args.no_solve and not os.path.exists(args.sheetgen):
+        sys.exit("sheetgen not found at %s (cmake --build build --target sheetgen)" % args.sheetgen)
+    os.makedirs(args.out, exist_ok=True)
+
+    rows, all_good = [], True
+    for run, scene, extra in runs:
+        problem = os.path.join(ROOT, "sample_scenes", scene, "problem.json")
+        out_dir = os.path.join(args.out, run)
+        os.makedirs(out_dir, exist_ok=True)
+        out_dir = os.path.realpath(out_dir)  # result.json's problem path is relative to the real folder
+        meta_path = os.path.join(out_dir, "run.json")
+        if args.no_solve:
+            meta = json.load(open(meta_path)) if os.path.exists(meta_path) else {"wall_s": None, "exit": None}
+        else:
+            cmd = [args.sheetgen, "solve", problem, "--out", out_dir, "--threads", str(args.threads)] + extra
+            if args.chains:
+                cmd += ["--chains", str(args.chains)]
+            if args.iterations:
+                cmd += ["--iterations", str(args.iterations)]
+            if args.seed is not None:
+                cmd += ["--seed", str(args.seed)]
+            print("== %s: %s" % (run, " ".join(os.path.relpath(c, ROOT) if c.startswith(ROOT) else c for c in cmd)), flush=True)
+            t0 = time.monotonic()
+            with open(os.path.join(out_dir, "solve.log"), "w") as log:
+                code = subprocess.run(cmd, stdout=log, stderr=subprocess.STDOUT).returncode
+            meta = {"run": run, "scene": scene, "command": cmd, "wall_s": time.monotonic() - t0, "exit": code,
+                    "sheetgen_mtime": time.strftime("%Y-%m-%d %H:%M:%S", time.gmtime(os.path.getmtime(args.sheetgen))),
+                    "started_utc": time.strftime("%Y-%m-%d %H:%M:%S", time.gmtime(time.time() - (time.monotonic() - t0)))}
+            json.dump(meta, open(meta_path, "w"), indent=2)
+            print("   exit %d in %.0f s" % (code, meta["wall_s"]), flush=True)
+        if not os.path.exists(os.path.join(out_dir, "result.json")):
+            verify = "no result"
+            all_good = False
+        else:
+            vcmd = [sys.executable, VERIFY, out_dir, "--allow-no-part", "--sheetgen", args.sheetgen]
+            if args.no_ccx:
+                vcmd.append("--no-ccx")
+            v = subprocess.run(vcmd, stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True)
+            open(os.path.join(out_dir, "verify.log"), "w").write(v.stdout)
+            res = json.load(open(os.path.join(out_dir, "result.json")))
+            n_parts = sum(p["status"] == "ok" for p in res["parts"])
+            if v.returncode == 0:
+                verify = "ok (%d part%s)" % (n_parts, "" if n_parts == 1 else "s") if n_parts else "n/a (no part)"
+            else:
+                n_bad = len({l.split(":")[1].strip() for l in v.stdout.splitlines() if l.startswith("FAIL:")})
+                verify = "FAIL (%d of %d parts)" % (n_bad, n_parts) if n_bad else "FAIL (verify crashed)"
+            if v.returncode != 0:
+                all_good = False
+                for l in v.stdout.splitlines():
+                    if l.startswith("FAIL") or "Error" in l:
+                        print("   " + l)
+        if meta.get("exit") not in (0, 2, None):
+            all_good = False
+        row = summarise(run, out_dir, meta.get("wall_s"), meta.get("exit"), verify)
+        rows.append(row)
+        print("   " + "  ".join(str(c) for c in fmt_row(row)), flush=True)
+
+    # Keep rows of runs not in this invocation (summary.json is the library's state).
+    summary_path = os.path.join(args.out, "summary.json")
+    old = json.load(open(summary_path)).get("rows", []) if os.path.exists(summary_path) else []
+    merged = {r["run"]: r for r in old}
+    merged.update({r["run"]: r for r in rows})
+    order = [r[0] for r in RUNS]
+    json.dump({"rows": [merged[k] for k in order if k in merged]}, open(summary_path, "w"), indent=2)
+    print()
+    print_table(rows)
+    sys.exit(0 if all_good else 1)
+
+
+if __name__ == "__main__":
+    main()
