@@ -56,7 +56,8 @@ void bind_generate(py::module_& m) {
 
   m.def("write_outputs", &write_outputs, py::arg("dir"), py::arg("problem"), py::arg("result"), py::arg("problem_path"),
         py::call_guard<py::gil_scoped_release>(),
-        "Write result.json and per-load part.obj, flat.dxf, flat.svg, bends.csv, history.csv (staged, then renamed).");
+        "Write result.json and per-load part.obj, flat.dxf, flat.svg, bends.csv, history.csv, convergence.png "
+        "(staged, then renamed).");
 }
 
 }  // namespace sheetgen::python

@@ -13,6 +13,8 @@
 #include "sheetgen/env/environment.hpp"
 #include "sheetgen/part/exports.hpp"
 #include "sheetgen/part/validity.hpp"
+#include "sheetgen/report/convergence_plot.hpp"
+#include "sheetgen/report/png_writer.hpp"
 #include "sheetgen/structure/part_model.hpp"
 
 namespace sheetgen {
@@ -300,6 +302,18 @@ std::string history_csv(const LoadOutcome& o) {
   return s.str();
 }
 
+// history.csv as a plot (paper Fig. 8), with the load's compliance limit and the required MS.
+RgbImage convergence_plot_image(const Problem& problem, const LoadOutcome& o) {
+  ConvergenceHistory h;
+  h.load = o.load;
+  for (const auto& r : o.history)
+    h.points.push_back({r.level, r.evaluated, r.found, r.best_area, r.compliance, r.margin_of_safety});
+  for (const Load& l : problem.loads)
+    if (l.name == o.load) h.compliance_limit_J = problem.requirements.compliance_limit(l.force.norm());
+  h.min_margin_of_safety = problem.requirements.min_margin_of_safety;
+  return draw_convergence_plot(h).image;
+}
+
 }  // namespace
 
 void write_outputs(const std::string& dir, const Problem& problem, const GenerateResult& result, const std::string& problem_path) {
@@ -316,6 +330,7 @@ void write_outputs(const std::string& dir, const Problem& problem, const Generat
       fs::create_directories(ld);
       if (o.ok) write_manufacturing_files(ld.u8string(), o.realised, o.plan);
       write_text_file((ld / "history.csv").u8string(), history_csv(o));
+      write_png_file((ld / "convergence.png").u8string(), convergence_plot_image(problem, o));
     }
     // result.json names the problem relative to itself.
     std::string ref = problem_path;
