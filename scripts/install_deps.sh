@@ -14,7 +14,7 @@ PACKAGES=(
   # python module (built for the system Python 3.11 that Debian's Blender runs)
   python3-dev pybind11-dev python3-numpy
   # runtime, reference and check tools
-  blender calculix-ccx python3-ezdxf python3-shapely python3-matplotlib
+  blender calculix-ccx python3-ezdxf python3-shapely python3-matplotlib python3-pil
   # screenshots of the Blender UI (scripts/make_screenshots.py)
   xvfb
   # fuzzing and sanitizers (clang + libFuzzer runtime)
