@@ -131,8 +131,8 @@ class Run:
             for root, _dirs, names in os.walk(tmp):
                 for n in names:
                     full = os.path.join(root, n)
-                    with open(full, encoding="utf-8", errors="replace") as f:
-                        files[os.path.relpath(full, tmp)] = f.read()
+                    with open(full, "rb") as f:  # convergence.png is binary: kept as base64 text
+                        files[os.path.relpath(full, tmp)] = jsonio.file_to_text(f.read())
             doc = json.loads(files["result.json"])
             return doc, files
         finally:
@@ -291,7 +291,7 @@ class SHEETGEN_OT_export_results(bpy.types.Operator):
             # Load folders first, result.json last (as write_outputs does): a half-written export never
             # looks finished.
             for rel in sorted(files, key=lambda r: (r == "result.json", r)):
-                jsonio.write_atomic(os.path.join(folder, rel), files[rel])
+                jsonio.write_atomic(os.path.join(folder, rel), jsonio.text_to_file(files[rel]))
         except OSError as e:
             self.report({'ERROR'}, "cannot write into %s: %s" % (folder, e.strerror or e))
             return {'CANCELLED'}

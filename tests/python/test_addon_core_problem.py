@@ -253,3 +253,31 @@ class NativeAgrees(unittest.TestCase):
 
 if __name__ == "__main__":
     unittest.main()
+
+
+class StoredExports(unittest.TestCase):
+    """Exports kept in the .blend as text: text as it is, binary (convergence.png) base64, both back byte for byte."""
+
+    def test_text_and_binary_round_trip(self):
+        png = b"\x89PNG\r\n\x1a\n\x00\x00\x00\rIHDR\xff\xfe"
+        csv = "iteration,evaluated\n1,24\n"
+        self.assertEqual(jsonio.file_to_text(csv.encode("utf-8")), csv)
+        stored = jsonio.file_to_text(png)
+        self.assertTrue(stored.startswith("base64:"))
+        self.assertEqual(jsonio.text_to_file(stored), png)
+        self.assertEqual(jsonio.text_to_file(jsonio.file_to_text(csv.encode())), csv)
+        # A text file that happens to start with the marker is stored as base64 too, and comes back unchanged.
+        odd = "base64:not really".encode()
+        self.assertEqual(jsonio.text_to_file(jsonio.file_to_text(odd)), odd)
+
+    def test_write_atomic_writes_bytes_exactly(self):
+        import tempfile
+        with tempfile.TemporaryDirectory() as d:
+            path = os.path.join(d, "sub", "convergence.png")
+            data = bytes(range(256))
+            jsonio.write_atomic(path, data)
+            with open(path, "rb") as f:
+                self.assertEqual(f.read(), data)
+            jsonio.write_atomic(path, "é\n")
+            with open(path, "rb") as f:
+                self.assertEqual(f.read(), "é\n".encode("utf-8"))

@@ -1,4 +1,5 @@
 """Problem JSON text and files: compact number arrays, atomic writes."""
+import base64
 import json
 import os
 import re
@@ -18,8 +19,8 @@ def dumps(problem: dict) -> str:
     return _NUMBER_ARRAY.sub(lambda m: "[" + ", ".join(x.strip() for x in m.group(1).split(",")) + "]", text) + "\n"
 
 
-def write_atomic(path: str, text: str) -> None:
-    """Write ``text`` to ``path`` through a temporary file in the same folder and a rename.
+def write_atomic(path: str, text) -> None:
+    """Write ``text`` (str, as UTF-8, or bytes) to ``path`` through a temporary file in the same folder and a rename.
 
     A reader (or a crash half-way) never sees a half-written problem file; the
     previous file stays in place until the new one is complete.
@@ -28,8 +29,9 @@ def write_atomic(path: str, text: str) -> None:
     os.makedirs(folder, exist_ok=True)
     fd, tmp = tempfile.mkstemp(prefix="." + os.path.basename(path) + ".", suffix=".tmp", dir=folder)
     try:
-        with os.fdopen(fd, "w", encoding="utf-8") as f:
-            f.write(text)
+        data = text if isinstance(text, (bytes, bytearray)) else text.encode("utf-8")
+        with os.fdopen(fd, "wb") as f:
+            f.write(data)
             f.flush()
             os.fsync(f.fileno())
         mask = os.umask(0)
@@ -42,6 +44,28 @@ def write_atomic(path: str, text: str) -> None:
         except OSError:
             pass
         raise
+
+
+# A binary export (convergence.png) kept in a text property of the .blend.
+_BINARY_PREFIX = "base64:"
+
+
+def file_to_text(data: bytes) -> str:
+    """An exported file as text for a Blender string property: UTF-8 as it is, anything else base64 with a prefix."""
+    try:
+        text = data.decode("utf-8")
+        if not text.startswith(_BINARY_PREFIX):
+            return text
+    except UnicodeDecodeError:
+        pass
+    return _BINARY_PREFIX + base64.b64encode(data).decode("ascii")
+
+
+def text_to_file(text: str):
+    """The inverse of ``file_to_text``: bytes for a base64-stored file, else the text itself."""
+    if text.startswith(_BINARY_PREFIX):
+        return base64.b64decode(text[len(_BINARY_PREFIX):])
+    return text
 
 
 def read(path: str) -> dict:

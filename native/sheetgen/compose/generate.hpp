@@ -70,7 +70,7 @@ GenerateResult generate(const Problem& problem, const GenerateOptions& options =
 nlohmann::json result_json(const Problem& problem, const GenerateResult& result, const std::string& problem_ref);
 
 // Writes DIR/result.json and per load DIR/<load>/{part.obj, flat.dxf, flat.svg,
-// bends.csv, history.csv}. Everything is written under temporary names first
+// bends.csv, history.csv, convergence.png}. Everything is written under temporary names first
 // and renamed into place at the end, so a failed or cancelled run never leaves
 // files claiming success. Throws std::runtime_error naming the file on failure.
 void write_outputs(const std::string& dir, const Problem& problem, const GenerateResult& result,
