@@ -1,5 +1,6 @@
 #include "sheetgen/fem/ccx_export.hpp"
 
+#include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
@@ -49,6 +50,41 @@ CcxDeckMap write_ccx_deck(const ShellModel& m, std::ostream& out, const CcxExpor
   out << "*NODE, NSET=NALL\n";
   for (size_t i = 0; i < m.nodes.size(); ++i)
     if (written[i]) out << map.node_id[i] << ", " << m.nodes[i].x() << ", " << m.nodes[i].y() << ", " << m.nodes[i].z() << "\n";
+  // The split adds nodes our model does not have. Where our element's field is
+  // set by its corner values alone, a new node must be held the same way, or
+  // the deck is a softer model than ours: an edge whose two ends are clamped
+  // does not move (DKT's w is Hermite in the end values and tangential slopes,
+  // its normal slope and OPT's membrane field interpolate the end values and
+  // drilling rotations), and an edge or triangle whose corners all follow one
+  // rigid link moves rigidly (both elements reproduce rigid motions exactly).
+  // So a midpoint or centroid is clamped, or joins the link, when all its
+  // corners are. Without this a rivet footprint in ccx was seven clamped points
+  // with free midpoints between them (docs/fem.md "Riveted multi-leg parts").
+  std::vector<char> clamped(m.nodes.size(), 0);
+  {
+    std::vector<std::array<bool, 6>> fixed(m.nodes.size(), std::array<bool, 6>{});
+    for (const NodeSupport& s : m.supports)
+      for (int d = 0; d < 6; ++d) fixed[s.node][d] = fixed[s.node][d] || s.fixed[d];
+    for (size_t i = 0; i < m.nodes.size(); ++i)
+      clamped[i] = std::all_of(fixed[i].begin(), fixed[i].end(), [](bool b) { return b; });
+  }
+  std::vector<int> link_of(m.nodes.size(), -1);
+  for (size_t l = 0; l < m.rigid_links.size(); ++l) {
+    link_of[m.rigid_links[l].master] = static_cast<int>(l);
+    for (int s : m.rigid_links[l].slaves) link_of[s] = static_cast<int>(l);
+  }
+  std::vector<int> held_clamped;                                  // deck ids of split nodes to clamp
+  std::vector<std::vector<int>> held_linked(m.rigid_links.size());  // per link, deck ids of split nodes in it
+  auto hold = [&](int id, std::initializer_list<int> corners) {
+    const int first = *corners.begin();
+    bool all_clamped = true, one_link = link_of[first] >= 0;
+    for (int c : corners) {
+      all_clamped = all_clamped && clamped[c];
+      one_link = one_link && link_of[c] == link_of[first];
+    }
+    if (all_clamped) held_clamped.push_back(id);
+    else if (one_link) held_linked[link_of[first]].push_back(id);
+  };
   // Edge midpoints (shared) and centroids.
   std::unordered_map<long long, int> midpoint;
   auto mid = [&](int a, int b) {
@@ -59,6 +95,7 @@ CcxDeckMap write_ccx_deck(const ShellModel& m, std::ostream& out, const CcxExpor
     const int id = ++next;
     out << id << ", " << p.x() << ", " << p.y() << ", " << p.z() << "\n";
     midpoint.emplace(key, id);
+    hold(id, {a, b});
     return id;
   };
   std::vector<std::array<int, 4>> quads;
@@ -68,6 +105,7 @@ CcxDeckMap write_ccx_deck(const ShellModel& m, std::ostream& out, const CcxExpor
     const Vec3 c = (m.nodes[t[0]] + m.nodes[t[1]] + m.nodes[t[2]]) / 3.0;
     const int cid = ++next;
     out << cid << ", " << c.x() << ", " << c.y() << ", " << c.z() << "\n";
+    hold(cid, {t[0], t[1], t[2]});
     // Counter-clockwise like the triangle, so every quad keeps its normal.
     quads.push_back({map.node_id[t[0]], m01, cid, m20});
     quads.push_back({map.node_id[t[1]], m12, cid, m01});
@@ -99,6 +137,7 @@ CcxDeckMap write_ccx_deck(const ShellModel& m, std::ostream& out, const CcxExpor
     out << "*NSET, NSET=RIGID" << l + 1 << "\n";
     if (in_element[link.master]) out << map.node_id[link.master] << ",\n";
     for (int s : link.slaves) out << map.node_id[s] << ",\n";
+    for (int id : held_linked[l]) out << id << ",\n";
     out << "*RIGID BODY, NSET=RIGID" << l + 1 << ", REF NODE=" << map.ref_node[l] << ", ROT NODE=" << map.rot_node[l]
         << "\n";
   }
@@ -120,6 +159,7 @@ CcxDeckMap write_ccx_deck(const ShellModel& m, std::ostream& out, const CcxExpor
         const auto [id, dof] = dof_target(s.node, d);
         out << id << ", " << dof << ", " << dof << "\n";
       }
+  for (int id : held_clamped) out << id << ", 1, 6\n";
   out << "*CLOAD\n";
   for (const NodalLoad& f : m.loads)
     for (int d = 0; d < 6; ++d) {
