@@ -1,6 +1,9 @@
 #include "sheetgen/compose/composition.hpp"
 #include "sheetgen/compose/self_rivet.hpp"
 
+#include <cstdio>
+#include <cstdlib>
+
 #include <tbb/enumerable_thread_specific.h>
 #include <tbb/parallel_for.h>
 #include <tbb/task_arena.h>
@@ -116,15 +119,28 @@ namespace {
 // for the most promising visible edge pairs, the lightest gussets that fit.
 std::vector<Candidate> self_rivet_variants(const Problem& problem, const Candidate& c) {
   std::vector<Candidate> out;
+  auto with_plan = [](Candidate v, const SelfRivetPlan& plan) {
+    v.part = plan.part;
+    for (size_t r = 0; r < plan.rivets_a.size(); ++r)
+      v.self_rivets.push_back(SelfRivetTie{plan.tab_a, plan.tab_b, plan.rivets_a[r], plan.rivets_b[r]});
+    return v;
+  };
   const RealisedPart rp = realise(c.part);
   for (const VisiblePair& pair : visible_edge_pairs(c.part, rp, problem.material.thickness)) {
     const auto plans = gusset_plans(c.part, rp, pair, problem);
-    for (size_t k = 0; k < plans.size() && k < 2; ++k) {
-      Candidate v = c;
-      v.part = plans[k].part;
-      for (size_t r = 0; r < plans[k].rivets_a.size(); ++r)
-        v.self_rivets.push_back(SelfRivetTie{plans[k].tab_a, plans[k].tab_b, plans[k].rivets_a[r], plans[k].rivets_b[r]});
-      out.push_back(std::move(v));
+    for (size_t k = 0; k < plans.size() && k < 2; ++k) out.push_back(with_plan(c, plans[k]));
+  }
+  // One gusset pair often stiffens one corner of a bend only (a leg has two
+  // sides): also the lightest single variant with the lightest gusset of the
+  // first pair still visible on it (riveted tabs are no longer free).
+  if (!out.empty()) {
+    const Candidate& first = out.front();
+    const RealisedPart rp2 = realise(first.part);
+    for (const VisiblePair& pair : visible_edge_pairs(first.part, rp2, problem.material.thickness)) {
+      const auto plans = gusset_plans(first.part, rp2, pair, problem);
+      if (plans.empty()) continue;
+      out.push_back(with_plan(first, plans.front()));
+      break;
     }
   }
   return out;
@@ -247,7 +263,15 @@ ComposeResult compose_part(const Problem& problem, const Environment& env, int l
           if (progress) ++progress->evaluated;
         });
       });
+      // SHEETGEN_COMPOSE_DEBUG=1: one stderr line per self-riveted variant (why it is or is not valid).
+      static const bool dbg = std::getenv("SHEETGEN_COMPOSE_DEBUG") != nullptr;
       for (Candidate& v : checked) {
+        if (dbg)
+          std::fprintf(stderr, "[self-rivet] level %d: gussets on tabs %d/%d edges %d/%d, %zu ties, geometry %s%s, C %.4g J (limit %.4g), MS %.3g, area %.1f cm2\n", level,
+                       v.part.tabs[v.part.size() - 2].parent, v.part.tabs[v.part.size() - 1].parent,
+                       v.part.tabs[v.part.size() - 2].parent_edge, v.part.tabs[v.part.size() - 1].parent_edge, v.self_rivets.size(), v.geometry_ok ? "ok" : "FAIL ", v.geometry_ok ? "" : v.message.c_str(),
+                       v.analysed ? v.fem.compliance : -1.0, v.analysed ? v.fem.compliance_limit : -1.0,
+                       v.analysed ? v.fem.margin_of_safety : -1.0, v.area * 1e4);
         result.fem_calls += v.analysed || !v.fem_error.empty();
         ++result.self_rivet_candidates;
         if (v.valid()) {

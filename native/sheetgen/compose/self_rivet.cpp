@@ -2,10 +2,12 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <optional>
 
 #include "sheetgen/part/polygon_geometry.hpp"
 #include "sheetgen/part/part.hpp"
+#include "sheetgen/part/validity.hpp"
 
 namespace sheetgen {
 
@@ -107,9 +109,27 @@ std::vector<SelfRivetPlan> gusset_plans(const Part& part, const RealisedPart& rp
     // room a skewed root slides along its edge in the flat, dL tan(theta2)
     // (docs/manufacturing.md).
     const double margin = bend_zone_depth(theta3, spec) + std::abs(bend_length_change(theta3, spec) * std::tan(lean)) + 0.5e-3;
-    const double w = e.length - 2 * margin;
+    double lo = margin, hi = e.length - margin;  // m, along the edge from e.a
+    // On a side edge of a bent tab the gusset's bend zone must also stay clear
+    // of that tab's own root bend zone (validity: BendZonesOverlap), which
+    // reaches sb into the tab from its root edge; the gusset's zone reaches
+    // back by its setback projected onto the tab's y axis.
+    if (e.tab != 0) {
+      const double sb = bend_setback(part.tabs[e.tab].params.theta3, spec);
+      const double reach_back = bend_setback(theta3, spec) * std::abs(t.normal.cross(dir).dot(t.y_axis));
+      const double need = sb + reach_back + 0.5e-3;
+      const double y0 = (e.a - t.origin).dot(t.y_axis), dy = dir.dot(t.y_axis);  // y(s) = y0 + s dy
+      if (std::abs(dy) < 1e-9) {
+        if (y0 < need) return std::nullopt;
+      } else if (dy > 0) {
+        lo = std::max(lo, (need - y0) / dy);
+      } else {
+        hi = std::min(hi, (need - y0) / dy);
+      }
+    }
+    const double w = hi - lo;
     if (w < mf.min_tab_width) return std::nullopt;
-    return Side{&e, dir, v, theta3, lean, margin, w, reach};
+    return Side{&e, dir, v, theta3, lean, lo, w, reach};
   };
   // Straight gussets (square to their edges) and gussets leaning towards the
   // other edge's middle: which one fits depends on what lies between the edges.
@@ -121,21 +141,47 @@ std::vector<SelfRivetPlan> gusset_plans(const Part& part, const RealisedPart& rp
     }
 
   const double edge_distance = mf.rivet_edge_distance;
+  const double clearance = problem.material.thickness + ValidityOptions{}.self_gap + 0.5e-3;  // m, as check_validity, plus a margin
   std::vector<SelfRivetPlan> plans;
   const double fractions[] = {0.35, 0.5, 0.7, 1.0};
   for (const auto& [side_a, side_b] : shapes)
   for (double fa : fractions)
     for (double fb : fractions) {
-      const Side* sa = &side_a;
-      const Side* sb = &side_b;
-      const double la = std::clamp(fa * sa->reach, mf.min_tab_length, mf.max_tab_length);
-      const double lb = std::clamp(fb * sb->reach, mf.min_tab_length, mf.max_tab_length);
+      const double la = std::clamp(fa * side_a.reach, mf.min_tab_length, mf.max_tab_length);
+      const double lb = std::clamp(fb * side_b.reach, mf.min_tab_length, mf.max_tab_length);
       // The gusset quad: root [P0, P1] on the edge, sides along the leaning centre line.
       auto rect = [&](const Side& s, double l) {
         const Vec3 p0 = s.e->a + s.d * s.dir, p1 = p0 + s.w * s.dir;
         const Vec3 side = l * (s.v + std::tan(s.theta2) * s.dir);
         return ccw({to2(p0), to2(p1), to2(p1 + side), to2(p0 + side)});
       };
+      // Each gusset lies in the common plane, which holds the other edge: the
+      // other tab leaves the plane along that edge, so the gusset must keep the
+      // sheets' clearance from it. Where two edges meet at an acute corner a
+      // gusset square to its edge would cross the other edge: give up width at
+      // the end nearer the other edge until it clears.
+      auto clear_of = [&](Side s, double l, const FreeEdge& other) -> std::optional<Side> {
+        const Vec2 q0 = to2(other.a), q1 = to2(other.b);
+        auto distance = [&](const Side& x) {
+          const std::vector<Vec2> r = rect(x, l);
+          double d = std::numeric_limits<double>::infinity();
+          for (size_t k = 0; k < r.size(); ++k) d = std::min(d, segment_distance_2d(r[k], r[(k + 1) % r.size()], q0, q1));
+          return d;
+        };
+        const Vec2 r0 = to2(s.e->a + s.d * s.dir), r1 = to2(s.e->a + (s.d + s.w) * s.dir);
+        const bool from_start = segment_distance_2d(r0, r0, q0, q1) < segment_distance_2d(r1, r1, q0, q1);
+        const double step = 2e-3;
+        while (distance(s) < clearance) {
+          s.w -= step;
+          if (from_start) s.d += step;
+          if (s.w < mf.min_tab_width) return std::nullopt;
+        }
+        return s;
+      };
+      const std::optional<Side> fit_a = clear_of(side_a, la, pair.b), fit_b = clear_of(side_b, lb, pair.a);
+      if (!fit_a || !fit_b) continue;
+      const Side* sa = &*fit_a;
+      const Side* sb = &*fit_b;
       const std::vector<Vec2> ra = rect(*sa, la), rb = rect(*sb, lb);
       const std::vector<Vec2> overlap = clip_convex(ra, rb);
       if (overlap.size() < 3) continue;

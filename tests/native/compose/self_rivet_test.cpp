@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include "sheetgen/env/environment.hpp"
+#include "sheetgen/part/polygon_geometry.hpp"
 #include "sheetgen/part/validity.hpp"
 #include "sheetgen/structure/part_model.hpp"
 
@@ -109,6 +110,43 @@ TEST(SelfRivet, GussetTiesTheBaseToItsFlangeAndStiffensTheSpringboard) {
     break;
   }
   EXPECT_GT(tried, 0);
+}
+
+
+// A tab folded under the base (interior angle 60 deg): a gusset square to its
+// edge would cross the other tab's edge, and a gusset on the tab's side edge
+// would start inside the tab's own root bend zone. Both are fitted: every
+// plan keeps the sheets' clearance and at least one passes the whole check.
+TEST(SelfRivet, GussetsFitIntoAnAcuteCorner) {
+  Problem p = wall_problem();
+  p.loads[0].center.x() += 0.03;  // room for the folded tab between the base and the wall
+  Part part = make_base_part(p.loads[0], 0, p.material.thickness);
+  part.add_tab(0, 3, TabParameters{0.0, 0.1, 0.07, 0, 0, -2.0 * M_PI / 3}, -1);
+  const RealisedPart rp = realise(part);
+  const Environment env(p);
+  ValidityOptions vo;
+  ASSERT_TRUE(check_validity(part, rp, env, vo).valid()) << check_validity(part, rp, env, vo).summary();
+  int plans_seen = 0, valid = 0;
+  for (const auto& pr : visible_edge_pairs(part, rp, p.material.thickness)) {
+    if (!((pr.a.tab == 0 && pr.b.tab == 1) || (pr.a.tab == 1 && pr.b.tab == 0))) continue;
+    for (const auto& plan : gusset_plans(part, rp, pr, p)) {
+      ++plans_seen;
+      const RealisedPart grp = realise(plan.part);
+      const ValidityReport rep = check_validity(plan.part, grp, env, vo);
+      if (rep.valid()) ++valid;
+      else std::printf("gusset +%.1f cm^2 rejected: %s\n", plan.added_area * 1e4, rep.summary().c_str());
+      // No gusset comes closer to the other tab than t + gap.
+      for (const auto& [g, other] : {std::pair{plan.tab_a, plan.part.tabs[plan.tab_b].parent},
+                                     std::pair{plan.tab_b, plan.part.tabs[plan.tab_a].parent}}) {
+        const double d = convex_polygon_distance(grp.tabs[g].corners, grp.tabs[g].normal, grp.tabs[other].corners,
+                                                 grp.tabs[other].normal, 1.0);
+        EXPECT_GE(d, p.material.thickness + vo.self_gap) << "gusset " << g << " and tab " << other;
+      }
+    }
+  }
+  std::printf("acute corner: %d gusset plans, %d valid\n", plans_seen, valid);
+  EXPECT_GT(plans_seen, 0);
+  EXPECT_GT(valid, 0);
 }
 
 }  // namespace
