@@ -11,10 +11,11 @@ the code that made them (issue 6 acceptance):
 * compliance and load deflection re-computed by CalculiX (`ccx`) on the deck
   `sheetgen export-ccx` writes: C = sum of *CLOAD values times ccx's
   displacements, within CCX_TOLERANCE of result.json, and within the limit
-  (+ the same tolerance). CCX_TOLERANCE is 6 %, not the 5 % issue 6 asks:
-  CalculiX's S4 on these riveted brackets still moves by 9.7 % between element
-  sizes 7.5 and 2 mm while ours moves by 1.4 % (docs/fem.md, "Open"), and the
-  corner sample measures 5.1 %; the gap is an open item, not a pass;
+  (+ the same tolerance). CCX_TOLERANCE is 5 % (issue 6). Since the deck
+  clamps / rigidly links the nodes CalculiX's quad split adds (docs/fem.md,
+  "Riveted multi-leg parts") the measured gaps are -0.3 .. -4.3 %; what is
+  left is the transverse shear a Kirchhoff plate leaves out next to the rivet
+  footprints (ours is the stiffer one), largest on one-rivet flanges;
 * the DXF's CUT outline, read by ezdxf, is one simple closed polygon (shapely)
   whose area equals the flat-pattern area in result.json.
 
@@ -35,7 +36,7 @@ import numpy as np
 from shapely.geometry import Polygon
 
 
-CCX_TOLERANCE = 0.06  # see the module docstring
+CCX_TOLERANCE = 0.05  # see the module docstring
 
 
 def read_obj(path):
