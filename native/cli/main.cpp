@@ -154,6 +154,7 @@ struct SolveArgs {
   std::optional<int> chains, iterations, beam, threads;
   bool right_angles = false;
   bool no_self_rivet = false;
+  bool no_lips = false;
 };
 
 // `sheetgen solve`: exit 0 = every load has a valid part, 2 = some load has
@@ -168,6 +169,7 @@ int solve(const SolveArgs& a) {
   options.seed = a.seed;
   options.right_angles = a.right_angles;
   options.compose.self_rivet = !a.no_self_rivet;
+  options.compose.stiffening_lips = !a.no_lips;
   sheetgen::GenerateProgress progress;
   std::signal(SIGINT, on_sigint);
   std::signal(SIGTERM, on_sigint);
@@ -248,6 +250,7 @@ int main(int argc, char** argv) {
   solve_cmd->add_option("--threads", solve_args.threads, "worker threads (0 = all cores)")->check(CLI::Range(0, 1024));
   solve_cmd->add_flag("--right-angles", solve_args.right_angles, "restrict bends to +-90 degrees and no skew (the expert's practice)");
   solve_cmd->add_flag("--no-self-rivet", solve_args.no_self_rivet, "do not try self-riveting (for the ablation of paper Fig. 9)");
+  solve_cmd->add_flag("--no-lips", solve_args.no_lips, "do not try stiffening lips on the free edges (the paper's method alone)");
 
   std::string ccx_result, ccx_load, ccx_out;
   auto* ccx = app.add_subcommand("export-ccx", "write one load's part as a CalculiX input deck");

@@ -1,5 +1,6 @@
 #include "sheetgen/compose/composition.hpp"
 #include "sheetgen/compose/self_rivet.hpp"
+#include "sheetgen/compose/stiffening_lip.hpp"
 
 #include <cstdio>
 #include <cstdlib>
@@ -244,14 +245,11 @@ ComposeResult compose_part(const Problem& problem, const Environment& env, int l
     });
     if (static_cast<int>(beam.size()) > options.beam_width) beam.resize(options.beam_width);
 
-    // Self-riveting where the margin of safety passes but compliance does not.
-    if (options.self_rivet) {
-      std::vector<Candidate> variants;
-      for (int i : beam) {
-        const Candidate& c = all[i];
-        if (!c.fem.strong_enough || c.fem.stiff_enough || !c.self_rivets.empty()) continue;
-        for (Candidate& v : self_rivet_variants(problem, c)) variants.push_back(std::move(v));
-      }
+    // Variants of beam candidates (gussets, lips): evaluated in parallel at the
+    // search mesh; the valid ones are recorded, none is expanded further.
+    // SHEETGEN_COMPOSE_DEBUG=1: one stderr line per variant (why it is or is not valid).
+    static const bool dbg = std::getenv("SHEETGEN_COMPOSE_DEBUG") != nullptr;
+    auto evaluate_variants = [&](std::vector<Candidate>& variants, const char* kind, int& counter) {
       std::vector<Candidate> checked(variants.size());
       arena.execute([&] {
         tbb::parallel_for(size_t(0), variants.size(), [&](size_t k) {
@@ -263,17 +261,14 @@ ComposeResult compose_part(const Problem& problem, const Environment& env, int l
           if (progress) ++progress->evaluated;
         });
       });
-      // SHEETGEN_COMPOSE_DEBUG=1: one stderr line per self-riveted variant (why it is or is not valid).
-      static const bool dbg = std::getenv("SHEETGEN_COMPOSE_DEBUG") != nullptr;
       for (Candidate& v : checked) {
         if (dbg)
-          std::fprintf(stderr, "[self-rivet] level %d: gussets on tabs %d/%d edges %d/%d, %zu ties, geometry %s%s, C %.4g J (limit %.4g), MS %.3g, area %.1f cm2\n", level,
-                       v.part.tabs[v.part.size() - 2].parent, v.part.tabs[v.part.size() - 1].parent,
-                       v.part.tabs[v.part.size() - 2].parent_edge, v.part.tabs[v.part.size() - 1].parent_edge, v.self_rivets.size(), v.geometry_ok ? "ok" : "FAIL ", v.geometry_ok ? "" : v.message.c_str(),
-                       v.analysed ? v.fem.compliance : -1.0, v.analysed ? v.fem.compliance_limit : -1.0,
-                       v.analysed ? v.fem.margin_of_safety : -1.0, v.area * 1e4);
+          std::fprintf(stderr, "[%s] level %d: %d tabs, %zu ties, geometry %s%s, C %.4g J (limit %.4g), MS %.3g, area %.1f cm2\n",
+                       kind, level, v.part.size(), v.self_rivets.size(), v.geometry_ok ? "ok" : "FAIL ",
+                       v.geometry_ok ? "" : v.message.c_str(), v.analysed ? v.fem.compliance : -1.0,
+                       v.analysed ? v.fem.compliance_limit : -1.0, v.analysed ? v.fem.margin_of_safety : -1.0, v.area * 1e4);
         result.fem_calls += v.analysed || !v.fem_error.empty();
-        ++result.self_rivet_candidates;
+        ++counter;
         if (v.valid()) {
           result.valid.push_back(v);
           if (!result.found || v.cost < result.best.cost) {
@@ -283,6 +278,46 @@ ComposeResult compose_part(const Problem& problem, const Environment& env, int l
           }
         }
       }
+    };
+
+    // Self-riveting where the margin of safety passes but compliance does not.
+    if (options.self_rivet) {
+      std::vector<Candidate> variants;
+      for (int i : beam) {
+        const Candidate& c = all[i];
+        if (!c.fem.strong_enough || c.fem.stiff_enough || !c.self_rivets.empty()) continue;
+        for (Candidate& v : self_rivet_variants(problem, c)) variants.push_back(std::move(v));
+      }
+      evaluate_variants(variants, "self-rivet", result.self_rivet_candidates);
+    }
+
+    // Stiffening lips on every beam candidate that misses its limits (our
+    // extension, docs/pipeline.md): built in parallel, one variant each.
+    if (options.stiffening_lips && !beam.empty()) {
+      std::vector<Candidate> lipped(beam.size());
+      std::vector<char> made(beam.size(), 0);
+      arena.execute([&] {
+        tbb::parallel_for(size_t(0), beam.size(), [&](size_t k) {
+          if (progress && progress->cancel.load()) return;
+          const Candidate& c = all[beam[k]];
+          if (!c.analysed || c.valid()) return;
+          LipResult lr = add_stiffening_lips(c.part, env, problem);
+          if (lr.lips == 0) return;
+          lipped[k] = c;
+          lipped[k].part = std::move(lr.part);
+          made[k] = 1;
+        });
+      });
+      std::vector<Candidate> variants;
+      for (size_t k = 0; k < beam.size(); ++k)
+        if (made[k]) {
+          if (dbg)
+            std::fprintf(stderr, "[lips] level %d: before: %d tabs, C %.4g J, MS %.3g, area %.1f cm2\n", level,
+                         all[beam[k]].part.size(), all[beam[k]].fem.compliance, all[beam[k]].fem.margin_of_safety,
+                         all[beam[k]].area * 1e4);
+          variants.push_back(std::move(lipped[k]));
+        }
+      evaluate_variants(variants, "lips", result.lip_candidates);
     }
 
     ComposeHistoryRow row;

@@ -24,6 +24,7 @@ struct ComposeOptions {
   double bend_cost = 2.0e-3;       // lambda, m^2 of material one bend is worth (about a 45 mm square)
   double search_element_size = 0;  // m, FEM mesh during the search; <= 0: 1.5x the default size
   bool self_rivet = true;          // try self-riveting when MS passes but compliance does not
+  bool stiffening_lips = true;     // try lips on the free edges of candidates that miss their limits
   int threads = 0;                 // 0 = all cores; results do not depend on it
 };
 
@@ -68,6 +69,7 @@ struct ComposeResult {
   int fem_calls = 0;
   int candidates = 0;
   int self_rivet_candidates = 0;   // gusset variants evaluated
+  int lip_candidates = 0;          // lipped variants evaluated
   bool cancelled = false;
   double seconds = 0;
 };

@@ -106,6 +106,8 @@ GenerateResult generate(const Problem& input, const GenerateOptions& options, Ge
   }
   result.search = problem.search;
   result.right_angles = options.right_angles;
+  result.self_rivet = options.compose.self_rivet;
+  result.stiffening_lips = options.compose.stiffening_lips;
   if (progress) progress->loads = static_cast<int>(problem.loads.size());
   CancelRelay relay(progress);
   auto cancelled = [&] { return progress && progress->cancel.load(); };
@@ -187,6 +189,7 @@ GenerateResult generate(const Problem& input, const GenerateOptions& options, Ge
     out.history = composed.history;
     out.fem_calls = composed.fem_calls;
     out.self_rivet_candidates = composed.self_rivet_candidates;
+    out.lip_candidates = composed.lip_candidates;
     bool final_ok = false;
     std::string final_reason;
     for (const Candidate& c : composed.valid) {
@@ -275,6 +278,7 @@ nlohmann::json result_json(const Problem& problem, const GenerateResult& result,
     p["library_segments"] = o.library_size;
     p["fem_calls"] = o.fem_calls;
     p["self_rivet_candidates"] = o.self_rivet_candidates;
+    p["lip_candidates"] = o.lip_candidates;
     p["timing"] = {{"environment_s", o.environment_seconds}, {"discovery_s", o.discovery_seconds},
                    {"composition_s", o.composition_seconds}, {"total_s", o.total_seconds}};
     parts.push_back(p);
@@ -285,7 +289,8 @@ nlohmann::json result_json(const Problem& problem, const GenerateResult& result,
   doc["parts"] = parts;
   doc["search"] = {{"chains", result.search.chains},         {"iterations", result.search.iterations},
                    {"beam_width", result.search.beam_width}, {"seed", result.search.seed},
-                   {"threads", result.search.threads},       {"right_angles", result.right_angles}};
+                   {"threads", result.search.threads},       {"right_angles", result.right_angles},
+                   {"self_rivet", result.self_rivet},         {"stiffening_lips", result.stiffening_lips}};
   doc["timing"] = {{"total_s", result.seconds}};
   return doc;
 }

@@ -51,6 +51,7 @@ struct LoadOutcome {
   int library_size = 0;
   int fem_calls = 0;
   int self_rivet_candidates = 0;     // gusset variants the composition tried
+  int lip_candidates = 0;            // lipped variants the composition tried
   double environment_seconds = 0, discovery_seconds = 0, composition_seconds = 0, total_seconds = 0;
 };
 
@@ -58,6 +59,7 @@ struct GenerateResult {
   std::vector<LoadOutcome> loads;
   SearchSettings search;              // the settings used (the problem's, with the options' overrides)
   bool right_angles = false;
+  bool self_rivet = true, stiffening_lips = true;  // the composition's variants that were on
   bool cancelled = false;
   double seconds = 0;
   bool all_ok() const;

@@ -1,4 +1,5 @@
 #include "sheetgen/compose/self_rivet.hpp"
+#include "sheetgen/compose/edge_span.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -109,25 +110,9 @@ std::vector<SelfRivetPlan> gusset_plans(const Part& part, const RealisedPart& rp
     // room a skewed root slides along its edge in the flat, dL tan(theta2)
     // (docs/manufacturing.md).
     const double margin = bend_zone_depth(theta3, spec) + std::abs(bend_length_change(theta3, spec) * std::tan(lean)) + 0.5e-3;
-    double lo = margin, hi = e.length - margin;  // m, along the edge from e.a
-    // On a side edge of a bent tab the gusset's bend zone must also stay clear
-    // of that tab's own root bend zone (validity: BendZonesOverlap), which
-    // reaches sb into the tab from its root edge; the gusset's zone reaches
-    // back by its setback projected onto the tab's y axis.
-    if (e.tab != 0) {
-      const double sb = bend_setback(part.tabs[e.tab].params.theta3, spec);
-      const double reach_back = bend_setback(theta3, spec) * std::abs(t.normal.cross(dir).dot(t.y_axis));
-      const double need = sb + reach_back + 0.5e-3;
-      const double y0 = (e.a - t.origin).dot(t.y_axis), dy = dir.dot(t.y_axis);  // y(s) = y0 + s dy
-      if (std::abs(dy) < 1e-9) {
-        if (y0 < need) return std::nullopt;
-      } else if (dy > 0) {
-        lo = std::max(lo, (need - y0) / dy);
-      } else {
-        hi = std::min(hi, (need - y0) / dy);
-      }
-    }
-    const double w = hi - lo;
+    const std::optional<EdgeSpan> span = free_edge_span(part, rp, e, theta3, margin, spec);
+    if (!span) return std::nullopt;
+    const double lo = span->lo, w = span->width();
     if (w < mf.min_tab_width) return std::nullopt;
     return Side{&e, dir, v, theta3, lean, lo, w, reach};
   };
