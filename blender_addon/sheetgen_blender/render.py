@@ -8,10 +8,12 @@ settings stay as they were.
 - camera: perspective, a slightly elevated 3/4 view of the bounding box of the
   parts and load boxes, the distance solved so all 8 box corners are inside the
   frame; of 8 candidate directions the one seeing most of the part (ray casts
-  against the environment) wins;
+  against the environment) wins; environment objects that still hide part of
+  it from there are drawn translucent;
 - materials: environment neutral grey with the rivet areas in their tag colour
   (the ``sheetgen_rivet_color`` attribute), part metallic, rivet markers red,
-  load boxes translucent blue;
+  load boxes translucent blue (2 mm inset, camera rays only), candidates of
+  loads without a valid part (``CANDIDATE_KEY``) translucent red;
 - sun + a grey world, Cycles on the CPU without denoising (NOTES.md: this build
   has no OpenImageDenoise), 640 x 400, few samples;
 - the flat pattern: matplotlib from the stored result.json (core.flatplot).
@@ -20,12 +22,22 @@ import math
 import os
 
 import bpy
-from mathutils import Vector
+from mathutils import Matrix, Vector
 
 from . import results, scene_io, tagging
 from .core import flatplot
 
 RES = (640, 400)
+# Object property marking a run object as the nearest candidate of a load without a valid part
+# (scripts/render_results.py adds them): rendered translucent red.
+CANDIDATE_KEY = "sheetgen_candidate"
+# An environment object hiding more than this fraction of the part corners from the chosen camera
+# (walls of an enclosed bay) is drawn translucent, with this alpha.
+HIDE_FRACTION = 0.02
+FADED_ALPHA = 0.22
+# m: the load boxes are drawn this much smaller on every side: the part's seat lies on the box's bottom
+# face, and coplanar translucent faces render as noise.
+BOX_INSET = 2e-3
 
 
 class RenderError(Exception):
@@ -68,6 +80,15 @@ def _copy(obj, scene, material, made):
     scene.collection.objects.link(o)
     made["objects"].append(o)
     return o
+
+
+def _inset(obj, d):
+    """Shrink obj about its local bounding-box centre by ``d`` (m, world) on every side."""
+    corners = [Vector(c) for c in obj.bound_box]
+    c = sum(corners, Vector()) / 8.0
+    f = [max(1.0 - 2.0 * d / size, 0.5) if size > 0 else 1.0 for size in obj.dimensions]
+    obj.matrix_world = (obj.matrix_world @ Matrix.Translation(c) @ Matrix.Diagonal((f[0], f[1], f[2], 1.0))
+                        @ Matrix.Translation(-c))
 
 
 def _bbox(objs):
@@ -149,7 +170,8 @@ def render_run(context, col, path, samples=32, resolution=RES, flat=True):
         raise RenderError("no result to render: run Generate first")
     src = context.scene
     parts = [o for o in col.objects if o.name.endswith(" part")]
-    if not parts:
+    candidates = [o for o in col.objects if o.get(CANDIDATE_KEY)]
+    if not parts and not candidates:
         raise RenderError("run '%s' has no valid part to render" % col.name)
     rivet_objs = [o for o in col.objects if o.name.endswith(" rivets")]
     env = scene_io.environment_objects(src, context.view_layer)
@@ -159,20 +181,30 @@ def render_run(context, col, path, samples=32, resolution=RES, flat=True):
     try:
         grey = _mat("~sg grey", (0.56, 0.56, 0.56), roughness=0.8)
         tagged = _mat("~sg tagged", (0.56, 0.56, 0.56), roughness=0.8, attribute=tagging.COLOR_ATTR)
-        # Gold anodised: metallic, and distinct from the grey scene and the red/blue rivet areas.
-        metal = _mat("~sg metal", (0.95, 0.72, 0.28), metallic=1.0, roughness=0.3)
+        # Gold anodised: half metallic (a full metal is noisy at few samples), and distinct from the grey scene and the red/blue rivet areas.
+        metal = _mat("~sg metal", (0.95, 0.64, 0.18), metallic=0.6, roughness=0.35)
         red = _mat("~sg rivet", (0.9, 0.1, 0.05), roughness=0.4)
         box = _mat("~sg load", (0.25, 0.45, 0.85), roughness=0.6, alpha=0.3)
-        made["materials"] += [grey, tagged, metal, red, box]
+        cand = _mat("~sg candidate", (0.9, 0.08, 0.05), roughness=0.5, alpha=0.3)
+        made["materials"] += [grey, tagged, metal, red, box, cand]
+        env_copies = []
         for o in env:
             has_tags = o.data.attributes.get(tagging.COLOR_ATTR) is not None
-            _copy(o, scene, tagged if has_tags else grey, made)
+            env_copies.append(_copy(o, scene, tagged if has_tags else grey, made))
         part_copies = [_copy(o, scene, metal, made) for o in parts]
+        part_copies += [_copy(o, scene, cand, made) for o in candidates]
         for o in rivet_objs:
             _copy(o, scene, red, made)
         load_copies = [_copy(o, scene, box, made) for o in load_objs]
         for o in load_copies:
+            _inset(o, BOX_INSET)
+        for o in load_copies + part_copies[len(parts):]:
             o.display_type = 'SOLID'
+            # Translucent boxes cast no shadow and are seen by camera rays only: with few samples their
+            # stochastic transparency only adds noise on the part.
+            o.visible_shadow = False
+            o.visible_glossy = False
+            o.visible_diffuse = False
         # light and world
         sun_data = bpy.data.lights.new("~sg sun", 'SUN')
         sun_data.energy = 4.0
@@ -204,12 +236,24 @@ def render_run(context, col, path, samples=32, resolution=RES, flat=True):
             if best is None or frac > best[0] + 1e-9:
                 best = (frac, d)
         frame_camera(cam, lo, hi, best[1], resolution)
+        faded = {}
+        for o in env_copies:
+            if _visible_fraction(_occluders([o]), cam.location.copy(), targets) < 1.0 - HIDE_FRACTION:
+                has_tags = o.data.attributes.get(tagging.COLOR_ATTR) is not None
+                if has_tags not in faded:
+                    faded[has_tags] = _mat("~sg faded", (0.56, 0.56, 0.56), roughness=0.8, alpha=FADED_ALPHA,
+                                           attribute=tagging.COLOR_ATTR if has_tags else None)
+                    made["materials"].append(faded[has_tags])
+                o.data.materials[0] = faded[has_tags]
         r = scene.render
         r.engine = 'CYCLES'
         scene.cycles.device = 'CPU'
         scene.cycles.samples = samples
         scene.cycles.use_denoising = False
         scene.cycles.use_adaptive_sampling = True
+        # No denoiser in this build: blur sharp highlights of the metal and clamp indirect fireflies instead.
+        scene.cycles.blur_glossy = 1.0
+        scene.cycles.sample_clamp_indirect = 5.0
         r.resolution_x, r.resolution_y = resolution
         r.resolution_percentage = 100
         r.image_settings.file_format = 'PNG'
