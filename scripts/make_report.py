@@ -4,9 +4,13 @@ scripts/solve_all.py (out/<run>/result.json, run.json, verify.log, summary.json)
 
     /usr/bin/python3 scripts/make_report.py [--out out] [--doc docs/results.md]
 
-Per run: a 3-D view of the part(s) in the environment (matplotlib, from
-result.json tabs and the scene's meshes; environment translucent grey, rivet
-areas green, load boxes orange, parts blue, drawn over the environment), the
+Per run: the Blender presentation render out/<run>/render.png when it exists
+and is newer than out/<run>/result.json (made by scripts/render_results.py,
+docs/blender.md "Rendering an existing result"; copied to
+docs/images/results/<run>_render.png), a 3-D view of the part(s) in the
+environment (matplotlib, from result.json tabs and the scene's meshes, always,
+from a fixed angle; environment translucent grey, rivet areas green, load
+boxes orange, parts blue, drawn over the environment), the
 flat pattern(s) (result.json flat_pattern outline, bend lines dashed: blue up,
 red down, with bend number and angle), the convergence of the composition
 (history: best area and C/Cmax against candidates evaluated) and the numbers.
@@ -18,6 +22,7 @@ import json
 import math
 import os
 import re
+import shutil
 import sys
 
 import matplotlib
@@ -235,10 +240,10 @@ def main():
           % datetime.date.today().isoformat(), "",
           "Pictures are matplotlib views (environment translucent grey, rivet areas green, load boxes orange, "
           "parts opaque and drawn over the environment so they stay visible, black dots: rivets). "
-          "`scripts/blender_batch.py` (presentation renders) %s." % (
-              ("exists, but it solves again from a tagged .blend (docs/blender.md) instead of rendering an existing "
-                                 "result.json, so these pictures do not use it") if os.path.exists(os.path.join(ROOT, "scripts", "blender_batch.py"))
-              else "did not exist when this report was made"), "",
+          "Where `out/<scene>/render.png` is newer than its result.json, the scene also shows the Blender "
+          "presentation render of that result (`scripts/render_results.py`, docs/blender.md: part gold, "
+          "environment grey with the rivet areas in their tag colours, load boxes translucent blue, nearest "
+          "candidate of a load without a valid part translucent red).", "",
           ] + [n + "\n" for n in args.note] + [
           "## Summary", "",
           "| scene | loads ok | area (cm²) | mass (kg) | bends | worst C/C_max | lowest MS | wall time (s) | settings | verify |",
@@ -360,6 +365,12 @@ def main():
         flat_png = os.path.join(img_dir, run + "_flat.png")
         conv_png = os.path.join(img_dir, run + "_convergence.png")
         scene_picture(run, prob, meshes, result, scene_png)
+        # The presentation render of scripts/render_results.py, if it was made from this result.json.
+        render_src = os.path.join(out_dir, "render.png")
+        render_png = None
+        if os.path.exists(render_src) and os.path.getmtime(render_src) > os.path.getmtime(res_path):
+            render_png = os.path.join(img_dir, run + "_render.png")
+            shutil.copyfile(render_src, render_png)
         has_flat = flat_picture(result, flat_png)
         convergence_picture(result, conv_png)
         s = result.get("search", {})
@@ -373,6 +384,9 @@ def main():
             if p["status"] != "ok":
                 md.append("*%s*: no valid part: %s" % (p["load"], p.get("reason", "")))
                 md.append("")
+        if render_png:
+            md.append("![%s: presentation render (Blender)](%s)" % (run, rel(render_png)))
+            md.append("")
         md.append("![%s in its environment](%s)" % (run, rel(scene_png)))
         md.append("")
         if has_flat:
