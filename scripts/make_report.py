@@ -243,7 +243,7 @@ def main():
           "Where `out/<scene>/render.png` is newer than its result.json, the scene also shows the Blender "
           "presentation render of that result (`scripts/render_results.py`, docs/blender.md: part gold, "
           "environment grey with the rivet areas in their tag colours, load boxes translucent blue, nearest "
-          "candidate of a load without a valid part translucent red).", "",
+          "candidate of a load without a valid part translucent magenta).", "",
           ] + [n + "\n" for n in args.note] + [
           "## Summary", "",
           "| scene | loads ok | area (cm²) | mass (kg) | bends | worst C/C_max | lowest MS | wall time (s) | settings | verify |",

@@ -15,7 +15,7 @@ Presentation** does in the UI. Writes:
   OUT_DIR/render_<load>_flat.png      the flat pattern of every load with a valid part
 
 A load without a valid part has its nearest candidate (result.json
-``parts[i].tabs``) shown in translucent red. Exit 0 on success, 1 on bad input
+``parts[i].tabs``) shown in translucent magenta. Exit 0 on success, 1 on bad input
 or an error (one sentence on stderr, no traceback).
 
 The add-on is used from this source tree (blender_addon/) and the native
@@ -172,7 +172,7 @@ def main(argv):
     n_ok = sum(1 for p in doc["parts"] if p.get("status") == "ok")
     print("render_results: %s: %d/%d loads with a part%s" % (
         out, n_ok, len(doc["parts"]),
-        "; nearest candidate in translucent red: " + ", ".join(candidates) if candidates else ""), flush=True)
+        "; nearest candidate in translucent magenta: " + ", ".join(candidates) if candidates else ""), flush=True)
     skipped = [p.get("load", "?") for p in doc["parts"] if p.get("status") != "ok" and not p.get("tabs")]
     if skipped:
         print("render_results: no candidate to show for %s (result.json has no tabs)" % ", ".join(skipped), flush=True)

@@ -13,7 +13,7 @@ settings stay as they were.
 - materials: environment neutral grey with the rivet areas in their tag colour
   (the ``sheetgen_rivet_color`` attribute), part metallic, rivet markers red,
   load boxes translucent blue (2 mm inset, camera rays only), candidates of
-  loads without a valid part (``CANDIDATE_KEY``) translucent red;
+  loads without a valid part (``CANDIDATE_KEY``) translucent magenta;
 - sun + a grey world, Cycles on the CPU without denoising (NOTES.md: this build
   has no OpenImageDenoise), 640 x 400, few samples;
 - the flat pattern: matplotlib from the stored result.json (core.flatplot).
@@ -29,7 +29,7 @@ from .core import flatplot
 
 RES = (640, 400)
 # Object property marking a run object as the nearest candidate of a load without a valid part
-# (scripts/render_results.py adds them): rendered translucent red.
+# (scripts/render_results.py adds them): rendered translucent magenta (the rivet areas are red).
 CANDIDATE_KEY = "sheetgen_candidate"
 # An environment object hiding more than this fraction of the part corners from the chosen camera
 # (walls of an enclosed bay) is drawn translucent, with this alpha.
@@ -185,7 +185,7 @@ def render_run(context, col, path, samples=32, resolution=RES, flat=True):
         metal = _mat("~sg metal", (0.95, 0.64, 0.18), metallic=0.6, roughness=0.35)
         red = _mat("~sg rivet", (0.9, 0.1, 0.05), roughness=0.4)
         box = _mat("~sg load", (0.25, 0.45, 0.85), roughness=0.6, alpha=0.3)
-        cand = _mat("~sg candidate", (0.9, 0.08, 0.05), roughness=0.5, alpha=0.3)
+        cand = _mat("~sg candidate", (0.75, 0.1, 0.85), roughness=0.5, alpha=0.45)  # magenta: stands out on red rivet areas
         made["materials"] += [grey, tagged, metal, red, box, cand]
         env_copies = []
         for o in env:

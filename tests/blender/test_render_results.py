@@ -77,11 +77,11 @@ class RenderResults(unittest.TestCase):
                 json.dump(doc, f)
             p = run_script(out, "--samples", "4", "--resolution", str(SIZE[0]), str(SIZE[1]))
             self.assertEqual(p.returncode, 0, p.stdout[-2000:] + p.stderr[-2000:])
-            self.assertIn("1/2 loads with a part; nearest candidate in translucent red: ghost", p.stdout)
+            self.assertIn("1/2 loads with a part; nearest candidate in translucent magenta: ghost", p.stdout)
             size, px = png_pixels(os.path.join(out, "render.png"))
             self.assertEqual(size, SIZE)
             # The part is the only gold in the picture: r > g > b with g well above b (grey, the blue box and
-            # the translucent red candidate over grey have g ~ b) and g not far below r (a red rivet area).
+            # the translucent magenta candidate has g << r, b) and g not far below r (a red rivet area).
             gold = sum(1 for r, g, b in px if r > g > b + 0.08 and g > 0.55 * r)
             self.assertGreater(gold, 0.002 * len(px), "no gold (part) pixels")
             self.assertGreater(len(set(px)), 100)                           # not one flat colour
