@@ -146,8 +146,11 @@ def main():
             print("== %s: %s" % (run, " ".join(os.path.relpath(c, ROOT) if c.startswith(ROOT) else c for c in cmd)), flush=True)
             t0 = time.monotonic()
             with open(os.path.join(out_dir, "solve.log"), "w") as log:
-                code = subprocess.run(cmd, stdout=log, stderr=subprocess.STDOUT).returncode
+                proc = subprocess.Popen(cmd, stdout=log, stderr=subprocess.STDOUT)
+                _, status, usage = os.wait4(proc.pid, 0)  # the child's own peak memory and CPU time
+                code = os.waitstatus_to_exitcode(status)
             meta = {"run": run, "scene": scene, "command": cmd, "wall_s": time.monotonic() - t0, "exit": code,
+                    "peak_rss_mb": usage.ru_maxrss / 1024.0, "cpu_s": usage.ru_utime + usage.ru_stime,
                     "sheetgen_mtime": time.strftime("%Y-%m-%d %H:%M:%S", time.gmtime(os.path.getmtime(args.sheetgen))),
                     "started_utc": time.strftime("%Y-%m-%d %H:%M:%S", time.gmtime(time.time() - (time.monotonic() - t0)))}
             json.dump(meta, open(meta_path, "w"), indent=2)
