@@ -41,6 +41,14 @@ bool contains(const std::vector<int>& v, int x) { return std::find(v.begin(), v.
 }  // namespace
 
 Environment::Environment(const Problem& problem, const EnvironmentOptions& options) : problem_(problem) {
+  for (const Load& load : problem_.loads) {
+    LoadBox box;
+    box.center = load.center;
+    box.to_local = load.rotation.conjugate().toRotationMatrix();
+    box.half = 0.5 * load.size;
+    box.radius = box.half.norm();
+    load_boxes_.push_back(box);
+  }
   const BoundingBox bounds = problem_.bounds();
   const double diag = std::max(bounds.diagonal(), 1e-9);
   const double t = problem_.material.thickness;
@@ -146,11 +154,18 @@ double Environment::distance_excluding(const Vec3& p, const AllowedContacts& all
       }
     }
   }
-  for (int l = 0; l < static_cast<int>(problem_.loads.size()); ++l) {
-    if (contains(allowed.loads, l)) continue;
-    d = std::min(d, problem_.loads[l].signed_distance(p));
+  for (int l = 0; l < static_cast<int>(load_boxes_.size()); ++l) {
+    const LoadBox& box = load_boxes_[l];
+    // |p - c| - r is a lower bound of the distance to the box.
+    if ((p - box.center).norm() - box.radius >= d || contains(allowed.loads, l)) continue;
+    d = std::min(d, box.signed_distance(p));
   }
   return d;
+}
+
+double Environment::LoadBox::signed_distance(const Vec3& p) const {
+  const Vec3 q = (to_local * (p - center)).cwiseAbs() - half;
+  return q.cwiseMax(Vec3::Zero()).norm() + std::min(q.maxCoeff(), 0.0);
 }
 
 Vec3 Environment::clearance_gradient(const Vec3& p) const {
@@ -164,12 +179,12 @@ Vec3 Environment::clearance_gradient(const Vec3& p) const {
       g = all_rivet_areas_->gradient(p);
     }
   }
-  for (const auto& load : problem_.loads) {
+  for (const LoadBox& load : load_boxes_) {
     const double d = load.signed_distance(p);
     if (d < best) {
       best = d;
       // Central differences of the exact box distance (cheap and robust at edges).
-      const double h = 1e-6 * std::max(1.0, load.size.norm());
+      const double h = 1e-6 * std::max(1.0, 2 * load.radius);
       for (int k = 0; k < 3; ++k) {
         Vec3 e = Vec3::Zero();
         e[k] = h;

@@ -92,6 +92,17 @@ class Environment {
   std::vector<std::unique_ptr<DistanceField>> rivet_fields_;  // one per rivet area
   std::unique_ptr<DistanceField> all_rivet_areas_;            // union, for quick rejection
   std::vector<BoundingBox> rivet_bounds_;
+  // The load boxes, prepared for the clearance queries (the hot path of the
+  // discovery in scenes with many loads): rotation as a matrix, and a bounding
+  // sphere to skip boxes farther than the nearest obstacle found so far.
+  struct LoadBox {
+    Vec3 center = Vec3::Zero();
+    Eigen::Matrix3d to_local = Eigen::Matrix3d::Identity();  // world -> box frame
+    Vec3 half = Vec3::Zero();                                  // m, half size
+    double radius = 0;                                         // m, half diagonal
+    double signed_distance(const Vec3& p) const;               // m, = Load::signed_distance
+  };
+  std::vector<LoadBox> load_boxes_;
   std::unique_ptr<RayCaster> rays_;
   std::vector<std::vector<int>> face_rivet_area_;  // [mesh][face] -> rivet area or -1
   std::vector<char> mesh_closed_;                    // per environment mesh: watertight

@@ -2,6 +2,9 @@
 
 #include <gtest/gtest.h>
 
+#include <random>
+
+#include "sheetgen/env/distance_field.hpp"
 #include "test_meshes.hpp"
 
 namespace sheetgen {
@@ -48,6 +51,44 @@ TEST(Environment, ClearanceCombinesFieldsAndBoxes) {
   EXPECT_NEAR(env.clearance(Vec3(0.2, 0.2, 0.2)), -0.05, 1e-9);
   // Gradient above the floor points up.
   EXPECT_NEAR(env.clearance_gradient(Vec3(-0.25, -0.25, 0.003)).z(), 1.0, 1e-9);
+}
+
+// Many rotated load boxes (an avionics bay): the clearance near them equals
+// the exact box distance (Load::signed_distance) of the nearest box not
+// allowed, and the sphere culling in the query never skips the nearest one.
+TEST(Environment, ManyRotatedBoxesGiveTheExactNearestBoxDistance) {
+  Problem p = floor_problem();
+  p.loads.clear();
+  std::mt19937_64 rng(7);
+  std::uniform_real_distribution<double> u(-1, 1);
+  for (int k = 0; k < 12; ++k) {
+    Load l;
+    l.name = "box" + std::to_string(k);
+    l.center = Vec3(0.25 * u(rng), 0.25 * u(rng), 0.3 + 0.1 * u(rng));
+    l.size = Vec3(0.03 + 0.02 * (u(rng) + 1), 0.04, 0.02 + 0.03 * (u(rng) + 1));
+    l.rotation = Eigen::Quaterniond(Eigen::AngleAxisd(M_PI * u(rng), Vec3(u(rng), u(rng), u(rng)).normalized()));
+    l.force = Vec3(0, 0, -10);
+    p.loads.push_back(l);
+  }
+  Environment env(p);
+  const AllowedContacts allowed{{}, {3, 8}};
+  int checked = 0;
+  for (int i = 0; i < 4000; ++i) {
+    const Vec3 q(0.3 * u(rng), 0.3 * u(rng), 0.3 + 0.2 * u(rng));
+    double all = env.obstacle_field().distance(q), some = all;  // the floor outside its rivet area
+    for (int k = 0; k < static_cast<int>(p.loads.size()); ++k) {
+      const double d = p.loads[k].signed_distance(q);
+      all = std::min(all, d);
+      if (k != 3 && k != 8) some = std::min(some, d);
+    }
+    // Where the rivet area is nearer than every box the query answers with it: not what this test is about.
+    if (env.rivet_area_distance(0, q) < all) continue;
+    ASSERT_NEAR(env.clearance(q), all, 1e-12) << i;
+    ++checked;
+    if (env.rivet_area_distance(0, q) >= some) ASSERT_NEAR(env.clearance(q, allowed), some, 1e-12) << i;
+  }
+  std::printf("rotated boxes: %d of 4000 points checked\n", checked);
+  EXPECT_GT(checked, 2000);
 }
 
 TEST(Environment, RivetFlangeOnItsAreaIsAllowedButNotOffIt) {
