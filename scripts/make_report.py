@@ -404,7 +404,13 @@ def main():
            "by the solver's documented rule (docs/fem.md).",
            "* Convergence plots show the composition's beam search (one point per level: candidates evaluated so far, "
            "area and C/C_max of the best valid part); the discovery phase itself is summarised by the library size.",
-           "* The discovery ablation (paper Sec. 6.4.1, Fig. 13) is in [ablation_discovery.md](ablation_discovery.md).", ""]
+           "* The discovery ablation (paper Sec. 6.4.1, Fig. 13) is in [ablation_discovery.md](ablation_discovery.md).", "",
+           "## Ablations", "",
+           "Tables, settings and readings: [ablation_discovery.md](ablation_discovery.md) (edge and segment policies on "
+           "the maze, paper Fig. 13) and [ablation_composition.md](ablation_composition.md) (composition vs the best "
+           "single chain, Fig. 14; self-riveting, Fig. 9; free vs right angles).", "",
+           "![discovery ablation](ablation_discovery.png)", "",
+           "![composition ablations](ablation_composition.png)", ""]
     open(args.doc, "w").write("\n".join(md))
     print("wrote", args.doc)
 
