@@ -81,9 +81,9 @@ class JsonFiles(unittest.TestCase):
             jsonio.write_atomic(path, "new\n")
             self.assertEqual(read_text(path), "new\n")
             self.assertEqual(os.listdir(d), ["problem.json"])
-            # A failing write keeps the previous file whole and removes its temporary.
+            # A refused write keeps the previous file whole and leaves no temporary.
             with self.assertRaises(TypeError):
-                jsonio.write_atomic(path, b"bytes are not text")
+                jsonio.write_atomic(path, 12345)  # neither text nor bytes
             self.assertEqual(read_text(path), "new\n")
             self.assertEqual(os.listdir(d), ["problem.json"])
 

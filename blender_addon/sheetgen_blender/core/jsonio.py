@@ -25,11 +25,16 @@ def write_atomic(path: str, text) -> None:
     A reader (or a crash half-way) never sees a half-written problem file; the
     previous file stays in place until the new one is complete.
     """
+    if isinstance(text, (bytes, bytearray)):
+        data = bytes(text)
+    elif isinstance(text, str):
+        data = text.encode("utf-8")
+    else:
+        raise TypeError("write_atomic: expected str or bytes, got %s" % type(text).__name__)
     folder = os.path.dirname(os.path.abspath(path))
     os.makedirs(folder, exist_ok=True)
     fd, tmp = tempfile.mkstemp(prefix="." + os.path.basename(path) + ".", suffix=".tmp", dir=folder)
     try:
-        data = text if isinstance(text, (bytes, bytearray)) else text.encode("utf-8")
         with os.fdopen(fd, "wb") as f:
             f.write(data)
             f.flush()
