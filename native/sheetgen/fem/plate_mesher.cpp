@@ -161,22 +161,28 @@ PlateMesh mesh_plates(const std::vector<std::vector<Vec3>>& polygons, const std:
     std::vector<Vec3> pts3;      // the points to triangulate, 3-D
     std::vector<int> fixed_3d;   // 1 for boundary and fixed points (not smoothed)
     std::vector<Vec2> tangent;   // tie-breaking direction: along the edge for boundary points
+    // Boundary points closer than `merge` along an edge become one: a corner of
+    // a neighbouring tab a fraction of a micrometre from this tab's corner
+    // (round-off of the tab parameters) would otherwise make a sliver element
+    // that CalculiX cannot give a normal ("gen3dnor"), and that carries no
+    // mechanics at the scale of a sheet.
+    const double merge = std::max(tol, 1e-3 * h);
     for (size_t i = 0; i < nv; ++i) {
       const Vec3& a = poly[i];
       const Vec3& b = poly[(i + 1) % nv];
       const double len = (b - a).norm();
-      if (len <= tol) continue;  // repeated vertex
+      if (len <= merge) continue;  // repeated vertex (its neighbour edge starts at b)
       std::vector<double> ts = {0.0, 1.0};
       for (const auto& other : polygons)
         for (const Vec3& q : other) {
           const double t = (q - a).dot(b - a) / (len * len);
-          if (t * len <= tol || (1 - t) * len <= tol) continue;
+          if (t * len <= merge || (1 - t) * len <= merge) continue;
           if ((a + t * (b - a) - q).norm() <= tol) ts.push_back(t);
         }
       std::sort(ts.begin(), ts.end());
       std::vector<double> uniq;
       for (double t : ts)
-        if (uniq.empty() || (t - uniq.back()) * len > tol) uniq.push_back(t);
+        if (uniq.empty() || (t - uniq.back()) * len > merge) uniq.push_back(t);
       for (size_t s = 0; s + 1 < uniq.size(); ++s) {
         const Vec3 P = a + uniq[s] * (b - a), Q = a + uniq[s + 1] * (b - a);
         const int pieces = std::max(1, static_cast<int>(std::ceil((Q - P).norm() / h - 1e-6)));

@@ -128,6 +128,31 @@ TEST(PlateMesher, TJunctionSharesEveryNodeOfTheSharedSegment) {
   EXPECT_EQ(nodes_on_segment(pm.mesh, child[1], child[1], 1e-9).size(), 1u);
 }
 
+// A child whose root corner sits 0.4 um beside the parent's corner (round-off
+// of the tab parameters, seen on a bay part): no sliver element. Before, the
+// parent's edge was split 0.4 um from its corner and CalculiX refused the
+// deck ("gen3dnor: size of estimated shell normal ... smaller than 1.e-10").
+TEST(PlateMesher, CornerAHairBesideANeighbourMakesNoSliver) {
+  const Poly parent = {Vec3(0, 0, 0), Vec3(0.06, 0, 0), Vec3(0.06, 0.04, 0), Vec3(0, 0.04, 0)};
+  const double hair = 4e-7;
+  const Poly child = {Vec3(0.06, 0.04, 0), Vec3(hair, 0.04, 0), Vec3(hair, 0.04, 0.03), Vec3(0.06, 0.04, 0.03)};
+  PlateMeshOptions opt;
+  opt.element_size = 0.005;
+  const PlateMesh pm = mesh_plates({parent, child}, {}, opt);
+  double min_edge = 1e9, min_area = 1e9;
+  for (const auto& t : pm.mesh.triangles) {
+    const Vec3 a = pm.mesh.vertices[t[0]], b = pm.mesh.vertices[t[1]], c = pm.mesh.vertices[t[2]];
+    min_edge = std::min({min_edge, (b - a).norm(), (c - b).norm(), (a - c).norm()});
+    min_area = std::min(min_area, 0.5 * (b - a).cross(c - a).norm());
+  }
+  std::printf("hair corner: %zu triangles, shortest edge %.3g m, smallest area %.3g m^2\n", pm.mesh.triangles.size(),
+              min_edge, min_area);
+  // A fraction of h: the shortest edge comes from the mesher's own grading, not the hair.
+  EXPECT_GT(min_edge, 0.1 * opt.element_size);
+  EXPECT_GT(min_area, 1e-3 * opt.element_size * opt.element_size);
+  EXPECT_NEAR(pm.mesh.area(), 0.06 * 0.04 + (0.06 - hair) * 0.03, 1e-9);
+}
+
 TEST(PlateMesher, SkewedTrapezoidTabsStayConformingAndWellShaped) {
   // Grammar tabs are trapezoids with skew: a parent trapezoid and a skewed
   // child on the middle of its far edge, bent 60 deg; default element size.
