@@ -629,7 +629,9 @@ DiscoveryResult discover_segments(const Problem& problem, const Environment& env
           step(ch, cx, counts);
           if (progress) progress->iterations.fetch_add(1, std::memory_order_relaxed);
         }
-        select_for_library(ch, cx, snapshot);
+        // Optimising the round's connections (contraction, widening) is the
+        // slow part of a round; a cancelled run does not wait for it.
+        if (!(progress && progress->cancel.load(std::memory_order_relaxed))) select_for_library(ch, cx, snapshot);
       });
     });
     if (progress && progress->cancel.load()) cancelled = true;
