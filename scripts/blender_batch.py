@@ -20,6 +20,8 @@ import sys
 import time
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import blender_addon_loader  # noqa: E402
 
 
 def parse_args(argv):
@@ -35,24 +37,11 @@ def parse_args(argv):
     return ap.parse_args(argv)
 
 
-def enable_addon(build_dir):
-    import addon_utils
-    import bpy
-    if hasattr(bpy.types.Scene, "sheetgen"):
-        return
-    for p in (os.path.join(build_dir, "python"), os.path.join(ROOT, "blender_addon")):
-        if p not in sys.path:
-            sys.path.insert(0, p)
-    mod = addon_utils.enable("sheetgen_blender", default_set=False, handle_error=None)
-    if mod is None or not hasattr(bpy.types.Scene, "sheetgen"):
-        raise RuntimeError("the sheetgen add-on could not be enabled from %s" % os.path.join(ROOT, "blender_addon"))
-
-
 def main(argv):
     args = parse_args(argv)
     t0 = time.monotonic()
     import bpy
-    enable_addon(args.build_dir)
+    blender_addon_loader.enable_addon(args.build_dir)
     from sheetgen_blender import generate, native, render
     from sheetgen_blender.core import result as core_result
     from sheetgen_blender.core.problem import ProblemError

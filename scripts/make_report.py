@@ -33,7 +33,7 @@ from mpl_toolkits.mplot3d.art3d import Poly3DCollection  # noqa: E402
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 sys.path.insert(0, os.path.join(ROOT, "tests", "python"))
-from verify_result import load_problem  # noqa: E402
+from verify_result import load_problem, load_rotation  # noqa: E402
 sys.path.insert(0, os.path.join(ROOT, "scripts"))
 from solve_all import RUNS  # noqa: E402
 
@@ -48,12 +48,7 @@ PART_COLOURS = ["#1f5fbf", "#7b3fbf", "#0f8f8f", "#bf3f7b", "#3f7fbf", "#5f5fff"
 
 
 def box_faces(load):
-    w, x, y, z = load.get("rotation", [1, 0, 0, 0])
-    n = math.sqrt(w * w + x * x + y * y + z * z)
-    w, x, y, z = w / n, x / n, y / n, z / n
-    R = np.array([[1 - 2 * (y * y + z * z), 2 * (x * y - w * z), 2 * (x * z + w * y)],
-                  [2 * (x * y + w * z), 1 - 2 * (x * x + z * z), 2 * (y * z - w * x)],
-                  [2 * (x * z - w * y), 2 * (y * z + w * x), 1 - 2 * (x * x + y * y)]])
+    R = load_rotation(load)
     h = 0.5 * np.array(load["size"])
     c = np.array(load["center"])
     corners = [c + R @ (h * np.array([sx, sy, sz])) for sz in (-1, 1) for sy in (-1, 1) for sx in (-1, 1)]

@@ -27,6 +27,8 @@ import sys
 import time
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import blender_addon_loader  # noqa: E402
 PREFIX = "render_results: "
 LARGE_RES = (960, 600)       # px: scenes with many loads (the avionics bay) have small parts in a large frame
 LARGE_SAMPLES = 16           # Cycles samples at LARGE_RES: keeps the render near 10 s on 2 cores
@@ -60,16 +62,10 @@ def parse_args(argv):
 
 
 def enable_addon(build_dir):
-    import addon_utils
-    import bpy
-    if hasattr(bpy.types.Scene, "sheetgen"):
-        return
-    for p in (os.path.join(build_dir, "python"), os.path.join(ROOT, "blender_addon")):
-        if p not in sys.path:
-            sys.path.insert(0, p)
-    mod = addon_utils.enable("sheetgen_blender", default_set=False, handle_error=None)
-    if mod is None or not hasattr(bpy.types.Scene, "sheetgen"):
-        raise InputError("the sheetgen add-on could not be enabled from %s" % os.path.join(ROOT, "blender_addon"))
+    try:
+        blender_addon_loader.enable_addon(build_dir)
+    except RuntimeError as e:
+        raise InputError(str(e)) from None
 
 
 def read_run(out_dir):

@@ -97,13 +97,19 @@ def point_triangle_distance(P, A, B, C):
     return np.linalg.norm(P - q, axis=-1)
 
 
-def box_distance(P, load):
+def load_rotation(load):
+    """The load box's local -> world rotation matrix from its (w, x, y, z) quaternion (normalised)."""
     w, x, y, z = load.get("rotation", [1, 0, 0, 0])
     n = math.sqrt(w * w + x * x + y * y + z * z)
     w, x, y, z = w / n, x / n, y / n, z / n
     R = np.array([[1 - 2 * (y * y + z * z), 2 * (x * y - w * z), 2 * (x * z + w * y)],
                   [2 * (x * y + w * z), 1 - 2 * (x * x + z * z), 2 * (y * z - w * x)],
                   [2 * (x * z - w * y), 2 * (y * z + w * x), 1 - 2 * (x * x + y * y)]])
+    return R
+
+
+def box_distance(P, load):
+    R = load_rotation(load)
     local = (P - np.array(load["center"])) @ R
     q = np.abs(local) - 0.5 * np.array(load["size"])
     outside = np.linalg.norm(np.maximum(q, 0), axis=1)

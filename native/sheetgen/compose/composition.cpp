@@ -10,7 +10,6 @@
 #include <tbb/task_arena.h>
 
 #include <algorithm>
-#include <cstdlib>
 #include <cstring>
 #include <chrono>
 #include <cmath>

@@ -4,6 +4,8 @@
 
 #include <gtest/gtest.h>
 
+#include "sheet_rules.hpp"
+
 #include "sheetgen/env/environment.hpp"
 #include "sheetgen/part/polygon_geometry.hpp"
 #include "sheetgen/part/validity.hpp"
@@ -30,15 +32,7 @@ Problem wall_problem() {
   l.size = Vec3(0.1, 0.1, 0.06);
   l.force = Vec3(0, 0, -30);
   p.loads.push_back(l);
-  const double t = p.material.thickness;
-  Manufacturing& m = p.manufacturing;
-  m.bend_radius = 4 * t;
-  m.min_flange = 4 * t + m.bend_radius;
-  m.min_tab_width = 10 * t;
-  m.min_tab_length = 2 * m.bend_radius + 2 * t;
-  m.rivet_diameter = 3.175e-3;
-  m.rivet_edge_distance = 2 * m.rivet_diameter;
-  m.rivet_pitch = 6 * m.rivet_diameter;
+  testing::set_sheet_rules(p);
   return p;
 }
 

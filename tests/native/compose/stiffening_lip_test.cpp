@@ -5,6 +5,8 @@
 
 #include <gtest/gtest.h>
 
+#include "sheet_rules.hpp"
+
 #include <cmath>
 
 #include "sheetgen/env/environment.hpp"
@@ -40,15 +42,8 @@ Fixture leg_on_floor() {
   l.size = Vec3(0.1, 0.1, 0.06);
   l.force = Vec3(40, 0, 0);
   p.loads.push_back(l);
+  testing::set_sheet_rules(p);
   const double t = p.material.thickness;
-  Manufacturing& m = p.manufacturing;
-  m.bend_radius = 4 * t;
-  m.min_flange = 4 * t + m.bend_radius;
-  m.min_tab_width = 10 * t;
-  m.min_tab_length = 2 * m.bend_radius + 2 * t;
-  m.rivet_diameter = 3.175e-3;
-  m.rivet_edge_distance = 2 * m.rivet_diameter;
-  m.rivet_pitch = 6 * m.rivet_diameter;
 
   f.part = make_base_part(l, 0, t);
   const double z_base = realise(f.part).tabs[0].corners[0].z();
