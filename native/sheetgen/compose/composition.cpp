@@ -126,8 +126,12 @@ std::vector<Candidate> self_rivet_variants(const Problem& problem, const Candida
     return v;
   };
   const RealisedPart rp = realise(c.part);
+  static const bool dbg = std::getenv("SHEETGEN_COMPOSE_DEBUG") != nullptr;
   for (const VisiblePair& pair : visible_edge_pairs(c.part, rp, problem.material.thickness)) {
     const auto plans = gusset_plans(c.part, rp, pair, problem);
+    if (dbg)  // a visible pair without a plan: its edges are too short or too obtuse for a gusset
+      std::fprintf(stderr, "[self-rivet] pair tabs %d/%d edges %d/%d, gap %.1f mm, tree distance %d: %zu plans\n", pair.a.tab,
+                   pair.b.tab, pair.a.edge, pair.b.edge, pair.gap * 1e3, pair.tree_distance, plans.size());
     for (size_t k = 0; k < plans.size() && k < 2; ++k) out.push_back(with_plan(c, plans[k]));
   }
   // One gusset pair often stiffens one corner of a bend only (a leg has two
