@@ -62,6 +62,8 @@ int main(int argc, char** argv) {
       o.threads = 0;
       o.edge_policy = p.edge;
       o.segment_policy = p.segment;
+      // SHEETGEN_ABL_SE=0..3: Eq. 2 se reading (TargetOptions::SeReading: Printed, Multiply, Divide, Plus)
+      if (const char* se = std::getenv("SHEETGEN_ABL_SE")) o.target.se_reading = static_cast<TargetOptions::SeReading>(std::atoi(se));
       const DiscoveryResult r = discover_segments(problem, env, 0, o);
       std::printf("%s,%llu,%d,%d", p.name, static_cast<unsigned long long>(o.seed), r.library.size(),
                   distinct(r.library, 0.05));
