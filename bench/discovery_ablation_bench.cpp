@@ -52,6 +52,9 @@ int main(int argc, char** argv) {
   std::printf(",seconds\n");
   for (int a = 4; a < argc; ++a) {
     for (const Pair& p : pairs) {
+      // SHEETGEN_ABL_ONLY=name[,name]: run only these pairs (quick experiments)
+      if (const char* only = std::getenv("SHEETGEN_ABL_ONLY"))
+        if (std::string(",") .append(only).append(",").find(std::string(",") + p.name + ",") == std::string::npos) continue;
       DiscoveryOptions o = DiscoveryOptions::from(problem);
       o.iterations = iterations;
       o.chains = chains;
@@ -59,11 +62,21 @@ int main(int argc, char** argv) {
       o.threads = 0;
       o.edge_policy = p.edge;
       o.segment_policy = p.segment;
+      // SHEETGEN_ABL_SE=0..3: Eq. 2 se reading (TargetOptions::SeReading: Printed, Multiply, Divide, Plus)
+      if (const char* se = std::getenv("SHEETGEN_ABL_SE")) o.target.se_reading = static_cast<TargetOptions::SeReading>(std::atoi(se));
       const DiscoveryResult r = discover_segments(problem, env, 0, o);
       std::printf("%s,%llu,%d,%d", p.name, static_cast<unsigned long long>(o.seed), r.library.size(),
                   distinct(r.library, 0.05));
       for (int c : r.stats.per_rivet_area) std::printf(",%d", c);
       std::printf(",%.2f\n", r.stats.seconds);
+      auto v = [](const std::vector<long long>& x) {
+        std::string s;
+        for (long long c : x) s += " " + std::to_string(c);
+        return s;
+      };
+      std::fprintf(stderr, "%s seed %s: found%s | optimised%s | failed%s | admitted%s | jumps %lld acc %.2f\n", p.name, argv[a],
+                   v(r.stats.found_per_ra).c_str(), v(r.stats.optimised_per_ra).c_str(), v(r.stats.failed_per_ra).c_str(),
+                   v(r.stats.admitted_per_ra).c_str(), r.stats.jumps, r.stats.acceptance_rate());
       std::fflush(stdout);
     }
   }

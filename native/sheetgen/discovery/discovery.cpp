@@ -433,6 +433,7 @@ void step(Chain& ch, const Context& cx, const std::vector<int>& counts) {
     for (auto& c : found) {
       c.u = ch.rng.uniform();
       ++ch.stats.candidates;
+      ++ch.stats.found_per_ra[c.segment.rivet_area];
       ch.found.push_back(std::move(c));
     }
   }
@@ -442,6 +443,7 @@ void step(Chain& ch, const Context& cx, const std::vector<int>& counts) {
 // Geometry optimisation of a candidate (Sec. 4.2); false when the result is not valid.
 bool optimise(Candidate& c, const Context& cx, Chain& ch) {
   ++ch.stats.optimised;
+  ++ch.stats.optimised_per_ra[c.segment.rivet_area];
   c.optimised = true;
   // SHEETGEN_DISC_DEBUG=1: one line per optimised candidate on stderr (tabs, summed length, widths per stage).
   static const bool dbg = std::getenv("SHEETGEN_DISC_DEBUG") != nullptr;
@@ -476,7 +478,7 @@ bool optimise(Candidate& c, const Context& cx, Chain& ch) {
     if (dbg) log += " | widen(" + std::to_string(wr.steps) + ") " + summary(c.work);
   }
   if (dbg) std::fprintf(stderr, "[seg] chain %d ra %d %s [%s]\n", ch.index, c.segment.rivet_area, log.c_str(), why(c.work).c_str());
-  if (!segment_valid(c.work, cx.env, cx.spec)) { ++ch.stats.optimise_failed; return false; }
+  if (!segment_valid(c.work, cx.env, cx.spec)) { ++ch.stats.optimise_failed; ++ch.stats.failed_per_ra[c.segment.rivet_area]; return false; }
   Segment s = make_segment(c.work);
   s.parent = c.segment.parent;
   s.parent_tab = c.segment.parent_tab;
@@ -605,6 +607,9 @@ DiscoveryResult discover_segments(const Problem& problem, const Environment& env
     chains[c].part = result.base;
     chains[c].realised = realise(chains[c].part);
     chains[c].f = o.target.empty_likelihood;
+    for (auto* v : {&chains[c].stats.found_per_ra, &chains[c].stats.optimised_per_ra, &chains[c].stats.failed_per_ra,
+                    &chains[c].stats.admitted_per_ra})
+      v->assign(cx.nra, 0);
   }
   if (progress) {
     progress->total = static_cast<long long>(o.chains) * o.iterations;
@@ -643,8 +648,8 @@ DiscoveryResult discover_segments(const Problem& problem, const Environment& env
         if (o.segment_policy == SegmentPolicy::Ours) r = result.library.offer(cand.segment, cand.u);
         else r = result.library.add(cand.segment);
         switch (r.outcome) {
-          case Admission::Admitted: ++ch.stats.admitted; break;
-          case Admission::Replaced: ++ch.stats.replaced; break;
+          case Admission::Admitted: ++ch.stats.admitted; ++ch.stats.admitted_per_ra[cand.segment.rivet_area]; break;
+          case Admission::Replaced: ++ch.stats.replaced; ++ch.stats.admitted_per_ra[cand.segment.rivet_area]; break;
           case Admission::Rejected: ++ch.stats.rejected; continue;
           case Admission::Full: ++ch.stats.full; continue;
         }
@@ -669,6 +674,12 @@ DiscoveryResult discover_segments(const Problem& problem, const Environment& env
     t.diffusions += s.diffusions; t.diffusions_accepted += s.diffusions_accepted;
     t.candidates += s.candidates; t.optimised += s.optimised; t.optimise_failed += s.optimise_failed;
     t.admitted += s.admitted; t.replaced += s.replaced; t.rejected += s.rejected; t.full += s.full;
+    auto acc = [&](std::vector<long long>& a, const std::vector<long long>& b) {
+      if (a.size() < b.size()) a.resize(b.size(), 0);
+      for (size_t k = 0; k < b.size(); ++k) a[k] += b[k];
+    };
+    acc(t.found_per_ra, s.found_per_ra); acc(t.optimised_per_ra, s.optimised_per_ra);
+    acc(t.failed_per_ra, s.failed_per_ra); acc(t.admitted_per_ra, s.admitted_per_ra);
   }
   result.library.compact();
   result.stats.per_rivet_area = result.library.counts_per_rivet_area(cx.nra);

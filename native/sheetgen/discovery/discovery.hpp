@@ -72,6 +72,8 @@ struct DiscoveryStats {
   int rounds = 0;
   double seconds = 0;
   std::vector<int> per_rivet_area;  // library segments per rivet area at the end
+  // per rivet area: connections found (accepted states), optimised, optimisation failed, admitted
+  std::vector<long long> found_per_ra, optimised_per_ra, failed_per_ra, admitted_per_ra;
   double acceptance_rate() const {
     const long long n = jumps + diffusions;
     return n ? static_cast<double>(jumps_accepted + diffusions_accepted) / n : 0.0;

@@ -58,8 +58,15 @@ double eq2_edge_weight(const std::vector<double>& dist, const std::vector<double
                        int steps, const TargetOptions& o) {
   const double se = 1.0 - static_cast<double>(times_selected) / (steps + 1.0);
   double w = 0;
-  for (size_t i = 0; i < dist.size() && i < popularity.size(); ++i)
-    w += std::exp(-o.alpha * dist[i] / o.scene_unit * se) * popularity[i];
+  for (size_t i = 0; i < dist.size() && i < popularity.size(); ++i) {
+    const double d = o.alpha * dist[i] / o.scene_unit;
+    switch (o.se_reading) {
+      case TargetOptions::SeReading::Printed: w += std::exp(-d * se) * popularity[i]; break;
+      case TargetOptions::SeReading::Multiply: w += se * std::exp(-d) * popularity[i]; break;
+      case TargetOptions::SeReading::Divide: w += std::exp(-d / se) * popularity[i]; break;
+      case TargetOptions::SeReading::Plus: w += std::exp(-d * (2.0 - se)) * popularity[i]; break;
+    }
+  }
   return w;
 }
 

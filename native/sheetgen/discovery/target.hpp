@@ -20,6 +20,17 @@ struct TargetOptions {
   // Value of Eq. 1 for a part without any feeler tab (the sum is empty); keeps
   // the MH ratio finite when a jump deletes the last feeler.
   double empty_likelihood = 1e-6;
+  // How se = 1 - selected / (steps + 1) enters Eq. 2 (docs/discovery.md,
+  // docs/ablation_discovery.md). The printed equation has exp(-alpha d se),
+  // which makes a frequently chosen edge MORE likely (its distance penalty
+  // vanishes), against the paper's prose ("a scaling factor that prefers fewer
+  // selected edges"). Readings:
+  // Divide:   exp(-alpha d / se)     (default: se scales the exponent, a frequently chosen edge looks farther)
+  // Printed:  exp(-alpha d se)       (as printed)
+  // Multiply: se * exp(-alpha d)     (se as a plain factor)
+  // Plus:     exp(-alpha d (2 - se)) (the fraction with the other sign: 1 + selected / (steps + 1))
+  enum class SeReading { Printed, Multiply, Divide, Plus };
+  SeReading se_reading = SeReading::Divide;
 };
 
 // The popularity factor of Eq. 1-2 per rivet area: (1 - c_i / (1 + sum_j c_j))^beta.
@@ -41,7 +52,8 @@ double eq1_likelihood(const Part& part, const RealisedPart& realised, const Envi
                       const std::vector<int>& connection_counts, const TargetOptions& options);
 
 // Eq. 2 for one free edge from its distances to the rivet areas (m):
-// sum_i exp(-alpha * dist[i] / unit * se) * popularity[i], se = 1 - selected / (steps + 1).
+// sum_i exp(-alpha * dist[i] / unit / se) * popularity[i], se = 1 - selected / (steps + 1)
+// (options.se_reading: Divide; see TargetOptions for the printed and other readings).
 double eq2_edge_weight(const std::vector<double>& dist, const std::vector<double>& popularity, int times_selected,
                        int steps, const TargetOptions& options);
 

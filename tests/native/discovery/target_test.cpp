@@ -68,12 +68,28 @@ TEST(Target, Eq2OnHandBuiltEdge) {
   EXPECT_NEAR(d[0], 0.3, 1e-6);
   EXPECT_NEAR(d[1], 0.5, 1e-6);
   TargetOptions o;
-  const auto pop = popularity_factors({1, 3}, 3.0);
+  const auto pop = popularity_factors({1, 3}, 3.0);  // (1 - 1/5)^3 = 0.512, (1 - 3/5)^3 = 0.064
+  // never selected: se = 1, every reading gives 0.512 e^-3 + 0.064 e^-5 = 0.0259222
+  const double w0 = eq2_edge_weight(d, pop, 0, 9, o);
+  EXPECT_NEAR(w0, 0.512 * std::exp(-3.0) + 0.064 * std::exp(-5.0), 1e-6);
+  EXPECT_NEAR(w0, 0.0259222, 1e-6);
   // selected twice in 9 steps: se = 1 - 2 / 10 = 0.8
+  // default (Divide): 0.512 e^(-3/0.8) + 0.064 e^(-5/0.8) = 0.512 e^-3.75 + 0.064 e^-6.25 = 0.0121646 < w0
+  EXPECT_EQ(o.se_reading, TargetOptions::SeReading::Divide);
   const double w = eq2_edge_weight(d, pop, 2, 9, o);
-  EXPECT_NEAR(w, 0.512 * std::exp(-3.0 * 0.8) + 0.064 * std::exp(-5.0 * 0.8), 1e-6);
-  // never selected: se = 1
-  EXPECT_NEAR(eq2_edge_weight(d, pop, 0, 9, o), 0.512 * std::exp(-3.0) + 0.064 * std::exp(-5.0), 1e-6);
+  EXPECT_NEAR(w, 0.512 * std::exp(-3.75) + 0.064 * std::exp(-6.25), 1e-6);
+  EXPECT_NEAR(w, 0.0121646, 1e-6);
+  EXPECT_LT(w, w0);  // prefers fewer selected edges
+  // as printed: 0.512 e^(-3 * 0.8) + 0.064 e^(-5 * 0.8) > w0 (a chosen edge gains weight)
+  o.se_reading = TargetOptions::SeReading::Printed;
+  EXPECT_NEAR(eq2_edge_weight(d, pop, 2, 9, o), 0.512 * std::exp(-3.0 * 0.8) + 0.064 * std::exp(-5.0 * 0.8), 1e-6);
+  EXPECT_NEAR(eq2_edge_weight(d, pop, 0, 9, o), w0, 1e-12);
+  // se as a factor: 0.8 * w0 = 0.0207378
+  o.se_reading = TargetOptions::SeReading::Multiply;
+  EXPECT_NEAR(eq2_edge_weight(d, pop, 2, 9, o), 0.0207378, 1e-6);
+  // 1 + 2/10 = 1.2 in the exponent: 0.512 e^-3.6 + 0.064 e^-6 = 0.0141484
+  o.se_reading = TargetOptions::SeReading::Plus;
+  EXPECT_NEAR(eq2_edge_weight(d, pop, 2, 9, o), 0.0141484, 1e-6);
 }
 
 TEST(Target, MetropolisHastingsRatioOnTwoStates) {
