@@ -93,7 +93,19 @@ void print_queries(const sheetgen::Problem& p, const sheetgen::EnvironmentOption
 // `sheetgen export-ccx RESULT.json --load NAME --out DECK.inp`: the FEM model of
 // one load's part as a CalculiX deck. result.json names its problem file
 // ("problem", relative to result.json), which supplies the load box and material.
-int export_ccx(const std::string& result_path, const std::string& load_name, const std::string& out_path) {
+// `--element-size MM` meshes at that size instead of the default (refinement
+// studies against CalculiX); `--solve` also solves the same model with our FEM
+// and prints its compliance and load deflection, so both solvers see one mesh.
+struct ExportCcxArgs {
+  std::string result, load, out;
+  double element_size_mm = 0;  // mm; <= 0: default_element_size (docs/fem.md)
+  bool solve = false;
+};
+
+int export_ccx(const ExportCcxArgs& a) {
+  const std::string& result_path = a.result;
+  const std::string& load_name = a.load;
+  const std::string& out_path = a.out;
   namespace fs = std::filesystem;
   std::ifstream in(fs::u8path(result_path), std::ios::binary);
   if (!in) throw sheetgen::InputError(result_path, "", "cannot be opened");
@@ -124,7 +136,9 @@ int export_ccx(const std::string& result_path, const std::string& load_name, con
   if (part->value("status", "ok") != "ok" || !part->contains("tabs"))
     throw sheetgen::InputError(result_path, "parts[load=" + load_name + "]", "has no valid part to export");
   const sheetgen::PlateGeometry geometry = sheetgen::plate_geometry_from_json(part->dump(), result_path);
-  const sheetgen::PartModel model = sheetgen::build_part_model(problem, load_index, geometry);
+  sheetgen::PartModelOptions model_options;
+  model_options.element_size = a.element_size_mm * 1e-3;
+  const sheetgen::PartModel model = sheetgen::build_part_model(problem, load_index, geometry, model_options);
   // Write beside the target and rename: a failed run leaves no half-written deck.
   const fs::path out = fs::u8path(out_path);
   const fs::path tmp = out.parent_path() / (out.filename().u8string() + ".tmp");
@@ -142,6 +156,12 @@ int export_ccx(const std::string& result_path, const std::string& load_name, con
                 map.node_count, map.element_count, model.rivets.size(), map.ref_node.empty() ? -1 : map.ref_node.back());
   }
   fs::rename(tmp, out);
+  if (a.solve) {
+    const sheetgen::ShellResult r = sheetgen::solve_shell(model.model);
+    std::printf("ours: h = %.4g mm, %zu triangles, %d DOF, compliance %.8g J, deflection %.8g mm\n",
+                model.mesh.element_size * 1e3, model.model.triangles.size(), r.reduced_dofs, r.compliance,
+                r.load_deflection * 1e3);
+  }
   return 0;
 }
 
@@ -252,11 +272,14 @@ int main(int argc, char** argv) {
   solve_cmd->add_flag("--no-self-rivet", solve_args.no_self_rivet, "do not try self-riveting (for the ablation of paper Fig. 9)");
   solve_cmd->add_flag("--no-lips", solve_args.no_lips, "do not try stiffening lips on the free edges (the paper's method alone)");
 
-  std::string ccx_result, ccx_load, ccx_out;
+  ExportCcxArgs ccx_args;
   auto* ccx = app.add_subcommand("export-ccx", "write one load's part as a CalculiX input deck");
-  ccx->add_option("result", ccx_result, "result JSON (sheetgen-result/1)")->required();
-  ccx->add_option("--load", ccx_load, "load name")->required();
-  ccx->add_option("--out", ccx_out, "deck to write (.inp)")->required();
+  ccx->add_option("result", ccx_args.result, "result JSON (sheetgen-result/1)")->required();
+  ccx->add_option("--load", ccx_args.load, "load name")->required();
+  ccx->add_option("--out", ccx_args.out, "deck to write (.inp)")->required();
+  ccx->add_option("--element-size", ccx_args.element_size_mm, "element size in mm (default: the solver's, docs/fem.md)")
+      ->check(CLI::Range(0.05, 1000.0));
+  ccx->add_flag("--solve", ccx_args.solve, "also solve the model with sheetgen's FEM and print compliance and deflection");
 
   try {
     app.parse(argc, argv);
@@ -277,7 +300,7 @@ int main(int argc, char** argv) {
     } else if (*solve_cmd) {
       return solve(solve_args);
     } else if (*ccx) {
-      return export_ccx(ccx_result, ccx_load, ccx_out);
+      return export_ccx(ccx_args);
     }
   } catch (const sheetgen::InputError& e) {
     std::fprintf(stderr, "sheetgen: %s\n", e.what());

@@ -150,6 +150,37 @@ PlateMesh mesh_plates(const std::vector<std::vector<Vec3>>& polygons, const std:
   NodeTable table(out.mesh.vertices, tol);
   out.fixed_point_nodes.resize(polygons.size());
 
+  // Polygon vertices closer than `merge` are one point. Tab corners computed
+  // from bend angles and offsets miss their neighbour's corner by round-off
+  // (0.3, 0.4 and 2.4 um on the right-angle bay's gps_receiver part, up to
+  // 1.9 um on the other parts of out/: more than `tol`). `merge` is at least
+  // t/100 (16 um for 1.6 mm sheet), far below any feature of a sheet part, so
+  // that it does not shrink under mesh refinement below the round-off: at
+  // h/1000 alone, h = 2 mm left the 2.4 um pair apart and made a sliver
+  // (a singular stiffness). Each edge therefore starts, ends and splits at the cluster's
+  // representative (the first such vertex in polygon order), never at its own
+  // copy, so both sides of a shared segment are split at bit-identical end
+  // points and get the same nodes. Dropping the near-duplicate on one side
+  // only (no sliver) but keeping each side's own end point left the fold
+  // between them cracked: its nodes 0.1-2.4 um apart, unmerged, and the part
+  // 5-15 % softer or stiffer at random element sizes (docs/fem.md "A large
+  // right-angle part"). A vertex closer than `merge` to another polygon's
+  // edge splits it, for the same reason.
+  const double merge = std::max({tol, 1e-3 * h, 1e-2 * options.thickness});
+  std::vector<Vec3> representatives;
+  std::vector<std::vector<Vec3>> snapped(polygons.size());
+  for (size_t k = 0; k < polygons.size(); ++k)
+    for (const Vec3& v : polygons[k]) {
+      const Vec3* rep = nullptr;
+      for (const Vec3& r : representatives)
+        if ((r - v).norm() <= merge) {
+          rep = &r;
+          break;
+        }
+      if (!rep) representatives.push_back(v);
+      snapped[k].push_back(rep ? *rep : v);
+    }
+
   for (size_t k = 0; k < polygons.size(); ++k) {
     const auto& poly = polygons[k];
     const PlaneFrame f = polygon_frame(poly, k, tol);
@@ -161,30 +192,33 @@ PlateMesh mesh_plates(const std::vector<std::vector<Vec3>>& polygons, const std:
     std::vector<Vec3> pts3;      // the points to triangulate, 3-D
     std::vector<int> fixed_3d;   // 1 for boundary and fixed points (not smoothed)
     std::vector<Vec2> tangent;   // tie-breaking direction: along the edge for boundary points
-    // Boundary points closer than `merge` along an edge become one: a corner of
-    // a neighbouring tab a fraction of a micrometre from this tab's corner
-    // (round-off of the tab parameters) would otherwise make a sliver element
-    // that CalculiX cannot give a normal ("gen3dnor"), and that carries no
-    // mechanics at the scale of a sheet.
-    const double merge = std::max(tol, 1e-3 * h);
+    // Boundary points closer than `merge` are one (see `snapped` above): a
+    // corner of a neighbouring tab a fraction of a micrometre from this tab's
+    // corner would otherwise make a sliver element that CalculiX cannot give a
+    // normal ("gen3dnor"), and that carries no mechanics at the scale of a sheet.
     for (size_t i = 0; i < nv; ++i) {
-      const Vec3& a = poly[i];
-      const Vec3& b = poly[(i + 1) % nv];
+      const Vec3& a = snapped[k][i];
+      const Vec3& b = snapped[k][(i + 1) % nv];
       const double len = (b - a).norm();
       if (len <= merge) continue;  // repeated vertex (its neighbour edge starts at b)
-      std::vector<double> ts = {0.0, 1.0};
-      for (const auto& other : polygons)
+      // Split points as (parameter along a->b, the point itself): a split at a
+      // neighbour's vertex uses that vertex exactly, which the neighbour's own
+      // edge starts or ends at, rather than its projection onto this edge.
+      std::vector<std::pair<double, Vec3>> ts = {{0.0, a}, {1.0, b}};
+      for (const auto& other : snapped)
         for (const Vec3& q : other) {
           const double t = (q - a).dot(b - a) / (len * len);
           if (t * len <= merge || (1 - t) * len <= merge) continue;
-          if ((a + t * (b - a) - q).norm() <= tol) ts.push_back(t);
+          if ((a + t * (b - a) - q).norm() <= merge) ts.emplace_back(t, q);
         }
-      std::sort(ts.begin(), ts.end());
-      std::vector<double> uniq;
-      for (double t : ts)
-        if (uniq.empty() || (t - uniq.back()) * len > merge) uniq.push_back(t);
+      std::sort(ts.begin(), ts.end(), [](const auto& x, const auto& y) { return x.first < y.first; });
+      std::vector<std::pair<double, Vec3>> uniq;
+      for (const auto& t : ts)
+        if (uniq.empty() || (t.first - uniq.back().first) * len > merge) uniq.push_back(t);
+      // The end point b must stay the last split (a neighbour's vertex within
+      // `merge` of b was skipped above, so it cannot displace it).
       for (size_t s = 0; s + 1 < uniq.size(); ++s) {
-        const Vec3 P = a + uniq[s] * (b - a), Q = a + uniq[s + 1] * (b - a);
+        const Vec3 P = uniq[s].second, Q = uniq[s + 1].second;
         const int pieces = std::max(1, static_cast<int>(std::ceil((Q - P).norm() / h - 1e-6)));
         for (int j = 0; j < pieces; ++j) {
           pts3.push_back(P + (Q - P) * (static_cast<double>(j) / pieces));
@@ -271,8 +305,16 @@ PlateMesh mesh_plates(const std::vector<std::vector<Vec3>>& polygons, const std:
                            (pts2[t[1]] - pts2[t[0]]).y() * (pts2[t[2]] - pts2[t[0]]).x();
       // Three points of one straight edge that round-off put a hair off the
       // line make a zero-area sliver on the hull: drop it (its two short
-      // edges are the boundary we want).
-      if (area2 <= 1e-6 * h * h && static_cast<size_t>(std::max({t[0], t[1], t[2]})) < n_boundary) continue;
+      // edges are the boundary we want). A split at a neighbour's snapped
+      // vertex can sit up to `merge` off the line (0.3 um on the gps_receiver
+      // part made a 0.3 um high sliver at h = 2 mm and a singular stiffness),
+      // so the test is the sliver's height against `merge`; three boundary
+      // points of a real corner are about h apart from the line.
+      const double longest = std::max({(pts2[t[1]] - pts2[t[0]]).norm(), (pts2[t[2]] - pts2[t[1]]).norm(),
+                                       (pts2[t[0]] - pts2[t[2]]).norm()});
+      if (std::abs(area2) <= std::max(1e-6 * h * h, merge * longest) &&
+          static_cast<size_t>(std::max({t[0], t[1], t[2]})) < n_boundary)
+        continue;
       if (area2 <= 1e-10 * h * h) {
         std::ostringstream s;
         s << "the triangulation produced a sliver (area " << 0.5 * area2 << " m^2); polygon too thin for h = " << h

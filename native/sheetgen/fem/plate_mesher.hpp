@@ -19,7 +19,7 @@ struct PlateMeshOptions {
   // [2 t, 20 mm] (finer than 2 t buys nothing for a Kirchhoff shell; 20 mm
   // keeps big base plates resolved).
   double element_size = 0;
-  double thickness = 1.6e-3;  // m, t for the default size rule
+  double thickness = 1.6e-3;  // m, t for the default size rule; polygon vertices closer than max(t/100, h/1000) are one point
   // m: points closer than this are one node; a vertex closer than this to an
   // edge splits the edge. Also the planarity tolerance (scaled by polygon size).
   double tolerance = 1e-7;

@@ -61,6 +61,22 @@ TEST(ExportCcxCli, DeckEqualsTheLibraryModel) {
   EXPECT_EQ(slurp(dir / "deck.inp"), expected.str());
   EXPECT_FALSE(fs::exists(dir / "deck.inp.tmp"));
 
+  // --element-size (mm) meshes at that size, --solve prints our compliance of
+  // the same model (refinement studies against CalculiX, docs/fem.md).
+  const auto [code3, out3] = run("export-ccx '" + (dir / "result.json").string() + "' --load box --element-size 7 --solve --out '" +
+                                 (dir / "deck7.inp").string() + "'");
+  ASSERT_EQ(code3, 0) << out3;
+  PartModelOptions seven;
+  seven.element_size = 7e-3;
+  std::ostringstream expected7;
+  write_ccx_deck(build_part_model(p, 0, plate_geometry(part, rp), seven).model, expected7);
+  EXPECT_EQ(slurp(dir / "deck7.inp"), expected7.str());
+  const StructuralResult ours = analyse_part(p, 0, plate_geometry(part, rp), seven);
+  const auto at = out3.find("compliance ");
+  ASSERT_NE(at, std::string::npos) << out3;
+  EXPECT_NEAR(std::stod(out3.substr(at + 11)), ours.compliance, 1e-7 * ours.compliance) << out3;  // printed to 8 digits
+  EXPECT_NE(out3.find("h = 7 mm"), std::string::npos) << out3;
+
   const auto [code2, out2] = run("export-ccx '" + (dir / "result.json").string() + "' --load crate --out '" + (dir / "x.inp").string() + "'");
   EXPECT_EQ(code2, 1);
   EXPECT_NE(out2.find("no load named 'crate'"), std::string::npos) << out2;
