@@ -100,7 +100,10 @@ class HardCases(unittest.TestCase):
         path = os.path.join(d, "problem.json")
         json.dump(prob, open(path, "w"))
         out = os.path.join(d, "out")
-        proc = subprocess.Popen([SHEETGEN, "solve", path, "--out", out, "--threads", "2"], stdout=subprocess.PIPE,
+        # 20 x the default iterations: the default run ends in about 2 s on
+        # two threads, and this test must interrupt it while it is going.
+        proc = subprocess.Popen([SHEETGEN, "solve", path, "--out", out, "--threads", "2", "--iterations", "20000"],
+                                stdout=subprocess.PIPE,
                                 stderr=subprocess.PIPE, text=True)
         time.sleep(2.0)
         self.assertIsNone(proc.poll(), "the run should still be going after 2 s")
@@ -131,7 +134,10 @@ class HardCases(unittest.TestCase):
         self.assertIn("loads: 10000", chk.stdout)
         print("check of 10 000 loads: %.2f s" % (time.monotonic() - t0))
         out = os.path.join(d, "out")
-        proc = subprocess.Popen([SHEETGEN, "solve", path, "--out", out, "--threads", "2"], stdout=subprocess.PIPE,
+        # 20 x the default iterations: the default run ends in about 2 s on
+        # two threads, and this test must interrupt it while it is going.
+        proc = subprocess.Popen([SHEETGEN, "solve", path, "--out", out, "--threads", "2", "--iterations", "20000"],
+                                stdout=subprocess.PIPE,
                                 stderr=subprocess.PIPE, text=True)
         time.sleep(4.0)
         self.assertIsNone(proc.poll())

@@ -53,7 +53,10 @@ bool closest_point_callback(RTCPointQueryFunctionArguments* args) {
 }  // namespace
 
 RayCaster::RayCaster(const std::vector<const TriangleMesh*>& meshes) : impl_(std::make_unique<Impl>()) {
-  impl_->device = rtcNewDevice("threads=1");  // queries run on the caller's threads; the build is small
+  // No "threads=N": Embree built on TBB turns N into a process-wide
+  // tbb::global_control, which would cap every parallel loop in sheetgen
+  // (chains, composition) at N threads while the device lives.
+  impl_->device = rtcNewDevice(nullptr);
   if (!impl_->device) throw std::runtime_error("Embree: cannot create a device (error " + std::to_string(rtcGetDeviceError(nullptr)) + ")");
   impl_->scene = rtcNewScene(impl_->device);
   rtcSetSceneBuildQuality(impl_->scene, RTC_BUILD_QUALITY_HIGH);

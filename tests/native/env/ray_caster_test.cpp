@@ -4,6 +4,8 @@
 
 #include <random>
 
+#include <tbb/global_control.h>
+
 #include "sheetgen/core/geometry.hpp"
 #include "test_meshes.hpp"
 
@@ -50,6 +52,18 @@ TEST(RayCaster, FirstHitMatchesBruteForceOnRandomRays) {
   }
   EXPECT_GT(hits, 300);
   EXPECT_GT(misses, 200);
+}
+
+// Embree built on TBB turns a device's "threads=N" into a process-wide
+// tbb::global_control: with N = 1 every parallel loop of sheetgen (the chains,
+// the composition) ran on one thread while an Environment lived.
+TEST(RayCaster, LeavesTheProcessThreadLimitAlone) {
+  const auto limit = [] { return tbb::global_control::active_value(tbb::global_control::max_allowed_parallelism); };
+  const size_t before = limit();
+  const TriangleMesh sphere = testing::icosphere(0.1, 2);
+  RayCaster rays({&sphere});
+  EXPECT_EQ(limit(), before);
+  ASSERT_TRUE(rays.first_hit(Vec3(0, 0, -1), Vec3(0, 0, 1), 10.0).has_value());
 }
 
 TEST(RayCaster, ClosestPointMatchesBruteForce) {
