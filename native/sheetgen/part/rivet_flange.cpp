@@ -79,6 +79,16 @@ FlangeAttachment check_rivet_flange(const Part& part, const RealisedPart& rp, in
       smin = std::min(smin, s);
       smax = std::max(smax, s);
     }
+    // A face's winding says nothing about which side is free: a bulkhead or
+    // a shelf drawn as one sheet may face either way (Blender does not care),
+    // and a rivet area is used from the side the part comes from. Measure
+    // from the flange's side; a flange inside a solid fails the clearance of
+    // the path that would have to reach it.
+    if (smin + smax < 0) {
+      const double lo = -smax;
+      smax = -smin;
+      smin = lo;
+    }
     if (std::abs(smin) > near && std::abs(smax) > near && smin * smax > 0) continue;  // a face far behind or in front
     const double ang = std::acos(std::clamp(std::abs(nf.dot(t.normal)), 0.0, 1.0));
     out.max_angle = std::max(out.max_angle, ang);

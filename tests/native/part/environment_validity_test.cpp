@@ -144,6 +144,27 @@ TEST(EnvironmentValidity, FlangeNotFlush) {
   EXPECT_EQ(fa.reason, ValidityReason::FlangeNotFlush) << fa.message;
 }
 
+// The same floor wound the other way (normal -z, as a sheet drawn in Blender
+// may be): the flange is on it from above all the same, and 1 mm lower it
+// still floats (1.8 mm, not t/2). Before the fix the flush flange was rejected
+// at "-0.800 mm (needs t/2 = 0.800 mm)", which kept every part off the
+// bulkheads of the avionics bay.
+TEST(EnvironmentValidity, FlangeIsFlushOnAFaceWoundEitherWay) {
+  for (const double z : {-0.0308, -0.0318}) {
+    FlangeScene s = flange_scene(-0.01, z);
+    for (auto& tri : s.problem.meshes[0].mesh.triangles) std::swap(tri[1], tri[2]);
+    ASSERT_LT(s.problem.meshes[0].mesh.face_normal(0).z(), -0.99);
+    const FlangeAttachment fa = check_rivet_flange(s.part, realise(s.part), 2, s.problem);
+    if (z == -0.0308) {
+      EXPECT_TRUE(fa.ok()) << fa.message;
+      EXPECT_NEAR(fa.covered_fraction, 1.0, 1e-12);
+      EXPECT_LT(fa.max_distance_error, 1e-12);
+    } else {
+      EXPECT_EQ(fa.reason, ValidityReason::FlangeNotFlush) << fa.message;
+    }
+  }
+}
+
 // A short flange leaves no room: l = 13 mm, flat from SB = 7.2 mm, needs
 // 2 x 7.9375 mm across -> empty rivet region.
 TEST(EnvironmentValidity, NoRoomForRivet) {
