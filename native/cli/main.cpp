@@ -234,10 +234,11 @@ int solve(const SolveArgs& a) {
   }
   for (const auto& l : result.loads) {
     if (l.ok)
-      std::printf("%-20s ok  area %.1f cm^2  mass %.1f g  bends %d  compliance %.4g J (limit %.4g)  deflection %.3f mm  MS %.2f  %.1f s\n",
+      std::printf("%-20s ok  area %.1f cm^2  mass %.1f g  bends %d  compliance %.4g J (limit %.4g)  deflection along F %.3f mm "
+                  "(|u| %.3f mm)  MS %.2f  %.1f s\n",
                   l.load.c_str(), l.part.area * 1e4, l.part.area * problem.material.thickness * problem.material.density * 1e3,
-                  l.part.bends, l.part.fem.compliance, l.part.fem.compliance_limit, l.part.fem.deflection * 1e3,
-                  l.part.fem.margin_of_safety, l.total_seconds);
+                  l.part.bends, l.part.fem.compliance, l.part.fem.compliance_limit, l.part.fem.deflection_along_force * 1e3,
+                  l.part.fem.deflection * 1e3, l.part.fem.margin_of_safety, l.total_seconds);
     else
       std::printf("%-20s no valid part: %s\n", l.load.c_str(), l.reason.c_str());
   }

@@ -125,6 +125,7 @@ class GenerateCorner(unittest.TestCase):
         self.assertEqual(v["compliance"], p["compliance"])
         self.assertEqual(v["compliance_limit"], p["compliance_limit"])
         self.assertEqual(v["deflection_m"], p["deflection_m"] * 1e3)
+        self.assertEqual(v["deflection_along_force_m"], p["deflection_along_force_m"] * 1e3)
         self.assertEqual(v["margin_of_safety"], p["margin_of_safety"])
         self.assertEqual(v["time_s"], p["timing"]["total_s"])
         self.assertEqual(p["bends"], len(p["flat_pattern"]["bends"]))

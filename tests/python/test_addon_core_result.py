@@ -29,7 +29,7 @@ def bracket(bend_b=(0.1008, 0.09), status="ok"):
     return {
         "load": "box", "status": status,
         "area_m2": 0.014, "mass_kg": 0.0623, "bends": 1, "compliance": 0.02, "compliance_limit": 0.1,
-        "deflection_m": 0.0002, "margin_of_safety": 1.25, "timing": {"total_s": 3.5},
+        "deflection_m": 0.0002, "deflection_along_force_m": 0.00015, "margin_of_safety": 1.25, "timing": {"total_s": 3.5},
         "tabs": [{"index": 0, "parent": -1, "corners": base},
                  {"index": 1, "parent": 0, "parent_edge": 1, "corners": child}],
         "rivets": [[0.05, 0.05, 0.2], [0.1, 0.05, 0.16]],
@@ -126,11 +126,13 @@ class Document(unittest.TestCase):
         self.assertEqual(v["compliance"], 0.02)
         self.assertEqual(v["compliance_limit"], 0.1)
         self.assertAlmostEqual(v["deflection_m"], 0.2)       # mm
+        self.assertAlmostEqual(v["deflection_along_force_m"], 0.15)  # mm
         self.assertEqual(v["margin_of_safety"], 1.25)
         self.assertEqual(v["time_s"], 3.5)
         rows = dict(R.report_rows(bracket()))
         self.assertEqual(rows["Area (cm²)"], "140.0")
-        self.assertEqual(rows["Deflection (mm)"], "0.200")
+        self.assertEqual(rows["Displacement |u| (mm)"], "0.200")
+        self.assertEqual(rows["Deflection along F (mm)"], "0.150")
         self.assertEqual(rows["Run time (s)"], "3.5")
         self.assertEqual(R.status_line(bracket()), "box: 140.0 cm², 1 bends, MS 1.25")
 

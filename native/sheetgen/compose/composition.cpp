@@ -368,7 +368,7 @@ ComposeResult compose_part(const Problem& problem, const Environment& env, int l
           << " bends)";
       if (!c.fem.stiff_enough)
         why << " has compliance " << c.fem.compliance << " J over the limit " << c.fem.compliance_limit << " J by "
-            << percent(c.fem.compliance / c.fem.compliance_limit - 1.0) << " (deflection " << c.fem.deflection * 1e3 << " mm)";
+            << percent(c.fem.compliance / c.fem.compliance_limit - 1.0) << " (deflection along the force " << c.fem.deflection_along_force * 1e3 << " mm)";
       if (!c.fem.strong_enough)
         why << (c.fem.stiff_enough ? "" : " and") << " has margin of safety " << c.fem.margin_of_safety << " below the required "
             << problem.requirements.min_margin_of_safety << " (max von Mises " << c.fem.max_von_mises * 1e-6 << " MPa)";

@@ -255,6 +255,7 @@ nlohmann::json result_json(const Problem& problem, const GenerateResult& result,
         p["compliance"] = c.fem.compliance;
         p["compliance_limit"] = c.fem.compliance_limit;
         p["deflection_m"] = c.fem.deflection;
+        p["deflection_along_force_m"] = c.fem.deflection_along_force;
         p["max_von_mises_pa"] = c.fem.max_von_mises;
         p["margin_of_safety"] = c.fem.margin_of_safety;
         p["fem_elements"] = c.fem.elements;

@@ -131,6 +131,9 @@ StructuralResult analyse_part(const Problem& problem, int load_index, const Plat
   StructuralResult s;
   s.compliance = r.compliance;
   s.deflection = r.load_deflection;
+  const Vec3& force = problem.loads[load_index].force;
+  if (r.load_node >= 0 && force.norm() > 0)
+    s.deflection_along_force = r.displacements[r.load_node].head<3>().dot(force.normalized());
   s.max_von_mises = r.max_von_mises;
   s.margin_of_safety = r.margin_of_safety;
   s.compliance_limit = problem.requirements.compliance_limit(problem.loads[load_index].force.norm());

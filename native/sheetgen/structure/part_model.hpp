@@ -54,7 +54,11 @@ PartModel build_part_model(const Problem& problem, int load_index, const PlateGe
 
 struct StructuralResult {
   double compliance = 0;        // J, f^T u
-  double deflection = 0;        // m, translation of the load centroid
+  double deflection = 0;        // m, |translation| of the load centroid
+  // m, the load centroid's translation along the force, u . F/|F|: what a
+  // max_deflection requirement bounds (C = F . u when there is no moment). A
+  // part may swing sideways more than this without breaking the requirement.
+  double deflection_along_force = 0;
   double max_von_mises = 0;     // Pa, by the stress rule of docs/fem.md
   double margin_of_safety = 0;  // -, Fty / (SF sigma) - 1
   double compliance_limit = 0;  // J, from the requirements

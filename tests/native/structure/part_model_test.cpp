@@ -91,6 +91,13 @@ TEST(PartModel, HatBracketFlangesLieOnTheFloorAndAgreeWithCalculix) {
   EXPECT_NEAR(ours.compliance / ccx.compliance, 1.0, 0.03);
   EXPECT_GT(ours.margin_of_safety, -1.0);
   EXPECT_EQ(ours.compliance_limit, 1e-3 * p.loads[0].force.norm());
+  EXPECT_LE(ours.deflection_along_force, ours.deflection * (1 + 1e-12));
+  // Without the moment, C = F . u = |F| u_F exactly (with it, C adds M . theta).
+  Problem q = p;
+  q.loads[0].moment = Vec3::Zero();
+  const StructuralResult f_only = analyse_part(q, 0, g, mo);
+  EXPECT_NEAR(f_only.deflection_along_force * q.loads[0].force.norm(), f_only.compliance, 1e-9 * f_only.compliance);
+  EXPECT_LE(f_only.deflection_along_force, f_only.deflection * (1 + 1e-12));
 }
 
 // A rivet clamps its whole footprint: every flange node within d of a rivet
