@@ -205,13 +205,22 @@ struct DistanceField::Impl {
     const bool in_table = std::abs(base.x()) < kTableLimit && std::abs(base.y()) < kTableLimit && std::abs(base.z()) < kTableLimit;
     const LeafSlot* leaf = in_one_leaf && in_table ? find_leaf(base) : nullptr;
     const openvdb::Index offset = openvdb::FloatTree::LeafNodeType::coordToOffset(base);
+    // A missing leaf reads as background: an unsigned narrow-band grid has no active tiles.
     if (leaf) {
       for (int c = 0; c < 8; ++c) v[c] = leaf->dist[offset + (c & 1) * 64 + ((c >> 1) & 1) * 8 + ((c >> 2) & 1)];
     } else if (in_one_leaf && in_table) {
-      // No leaf: an unsigned narrow-band grid has no active tiles, so this is background.
       for (int c = 0; c < 8; ++c) v[c] = static_cast<float>(band);
+    } else if (in_table) {
+      // The cell straddles leaves (about a third of the queries): one table
+      // probe per corner. A tree accessor here cost more than the rest of the
+      // query, because OpenVDB registers every accessor in a locked hash map.
+      for (int c = 0; c < 8; ++c) {
+        const openvdb::Coord q = base.offsetBy(c & 1, (c >> 1) & 1, (c >> 2) & 1);
+        const LeafSlot* l = find_leaf(q);
+        v[c] = l ? l->dist[openvdb::FloatTree::LeafNodeType::coordToOffset(q)] : static_cast<float>(band);
+      }
     } else {
-      auto acc = dist->getConstAccessor();
+      auto acc = dist->getConstUnsafeAccessor();  // unregistered: read-only grid
       for (int c = 0; c < 8; ++c) v[c] = acc.getValue(base.offsetBy(c & 1, (c >> 1) & 1, (c >> 2) & 1));
     }
     // Inactive voxels hold the background (the band width): all 8 there = outside the band.
@@ -242,8 +251,14 @@ struct DistanceField::Impl {
     };
     if (leaf && leaf->index) {
       for (int c = 0; c < 8; ++c) add_face(leaf->index[offset + (c & 1) * 64 + ((c >> 1) & 1) * 8 + ((c >> 2) & 1)]);
+    } else if (in_table && !in_one_leaf) {
+      for (int c = 0; c < 8; ++c) {
+        const openvdb::Coord q = base.offsetBy(c & 1, (c >> 1) & 1, (c >> 2) & 1);
+        const LeafSlot* l = find_leaf(q);
+        if (l && l->index) add_face(l->index[openvdb::Int32Tree::LeafNodeType::coordToOffset(q)]);
+      }
     } else {
-      auto iacc = index->getConstAccessor();
+      auto iacc = index->getConstUnsafeAccessor();
       for (int c = 0; c < 8; ++c) add_face(iacc.getValue(base.offsetBy(c & 1, (c >> 1) & 1, (c >> 2) & 1)));
     }
     if (n == 0) return out;
