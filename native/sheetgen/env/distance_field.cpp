@@ -196,29 +196,37 @@ struct DistanceField::Impl {
     const openvdb::Coord base(static_cast<int>(fx), static_cast<int>(fy), static_cast<int>(fz));
     const double tx = x - fx, ty = y - fy, tz = z - fz;
     float v[8];
-    // Fast path: the 8 corners lie in one 8^3 leaf (7 times in 8 per axis), one
-    // tree descent and direct reads. Corner c is base + (c&1, c>>1&1, c>>2&1);
-    // a leaf stores x-major, so the offsets are 64, 8 and 1.
+    // Corner c is base + (c&1, c>>1&1, c>>2&1); a leaf stores x-major, so the
+    // offsets are 64, 8 and 1. When the 8 corners lie in one 8^3 leaf (7 times
+    // in 8 per axis), one table probe serves them all.
     const bool in_one_leaf = (base.x() & 7) != 7 && (base.y() & 7) != 7 && (base.z() & 7) != 7;
     // Coordinates beyond the table's 21-bit range take the tree path.
     constexpr int kTableLimit = (1 << 23) - 8;
     const bool in_table = std::abs(base.x()) < kTableLimit && std::abs(base.y()) < kTableLimit && std::abs(base.z()) < kTableLimit;
-    const LeafSlot* leaf = in_one_leaf && in_table ? find_leaf(base) : nullptr;
-    const openvdb::Index offset = openvdb::FloatTree::LeafNodeType::coordToOffset(base);
-    // A missing leaf reads as background: an unsigned narrow-band grid has no active tiles.
-    if (leaf) {
-      for (int c = 0; c < 8; ++c) v[c] = leaf->dist[offset + (c & 1) * 64 + ((c >> 1) & 1) * 8 + ((c >> 2) & 1)];
-    } else if (in_one_leaf && in_table) {
-      for (int c = 0; c < 8; ++c) v[c] = static_cast<float>(band);
-    } else if (in_table) {
-      // The cell straddles leaves (about a third of the queries): one table
-      // probe per corner. A tree accessor here cost more than the rest of the
-      // query, because OpenVDB registers every accessor in a locked hash map.
-      for (int c = 0; c < 8; ++c) {
-        const openvdb::Coord q = base.offsetBy(c & 1, (c >> 1) & 1, (c >> 2) & 1);
-        const LeafSlot* l = find_leaf(q);
-        v[c] = l ? l->dist[openvdb::FloatTree::LeafNodeType::coordToOffset(q)] : static_cast<float>(band);
+    // Each corner's leaf (nullptr: no leaf, which reads as background, since an
+    // unsigned narrow-band grid has no active tiles) and its offset in it,
+    // found once for both the distance and the index grid. A cell
+    // that straddles leaves (about a third of the queries) probes the table
+    // once per corner: a tree accessor there cost more than the rest of the
+    // query, because OpenVDB registers every accessor in a locked hash map.
+    const LeafSlot* corner_leaf[8];
+    openvdb::Index corner_offset[8];
+    if (in_table) {
+      if (in_one_leaf) {
+        const LeafSlot* leaf = find_leaf(base);
+        const openvdb::Index offset = openvdb::FloatTree::LeafNodeType::coordToOffset(base);
+        for (int c = 0; c < 8; ++c) {
+          corner_leaf[c] = leaf;
+          corner_offset[c] = offset + (c & 1) * 64 + ((c >> 1) & 1) * 8 + ((c >> 2) & 1);
+        }
+      } else {
+        for (int c = 0; c < 8; ++c) {
+          const openvdb::Coord q = base.offsetBy(c & 1, (c >> 1) & 1, (c >> 2) & 1);
+          corner_leaf[c] = find_leaf(q);
+          corner_offset[c] = openvdb::FloatTree::LeafNodeType::coordToOffset(q);
+        }
       }
+      for (int c = 0; c < 8; ++c) v[c] = corner_leaf[c] ? corner_leaf[c]->dist[corner_offset[c]] : static_cast<float>(band);
     } else {
       auto acc = dist->getConstUnsafeAccessor();  // unregistered: read-only grid
       for (int c = 0; c < 8; ++c) v[c] = acc.getValue(base.offsetBy(c & 1, (c >> 1) & 1, (c >> 2) & 1));
@@ -249,14 +257,9 @@ struct DistanceField::Impl {
     auto add_face = [&](int f) {
       if (f >= 0 && f < nf && std::find(faces, faces + n, f) == faces + n) faces[n++] = f;
     };
-    if (leaf && leaf->index) {
-      for (int c = 0; c < 8; ++c) add_face(leaf->index[offset + (c & 1) * 64 + ((c >> 1) & 1) * 8 + ((c >> 2) & 1)]);
-    } else if (in_table && !in_one_leaf) {
-      for (int c = 0; c < 8; ++c) {
-        const openvdb::Coord q = base.offsetBy(c & 1, (c >> 1) & 1, (c >> 2) & 1);
-        const LeafSlot* l = find_leaf(q);
-        if (l && l->index) add_face(l->index[openvdb::Int32Tree::LeafNodeType::coordToOffset(q)]);
-      }
+    if (in_table) {
+      for (int c = 0; c < 8; ++c)
+        if (corner_leaf[c] && corner_leaf[c]->index) add_face(corner_leaf[c]->index[corner_offset[c]]);
     } else {
       auto iacc = index->getConstUnsafeAccessor();
       for (int c = 0; c < 8; ++c) add_face(iacc.getValue(base.offsetBy(c & 1, (c >> 1) & 1, (c >> 2) & 1)));
