@@ -175,6 +175,7 @@ struct SolveArgs {
   bool right_angles = false;
   bool no_self_rivet = false;
   bool no_lips = false;
+  bool no_web_roots = false;
 };
 
 // `sheetgen solve`: exit 0 = every load has a valid part, 2 = some load has
@@ -190,6 +191,7 @@ int solve(const SolveArgs& a) {
   options.right_angles = a.right_angles;
   options.compose.self_rivet = !a.no_self_rivet;
   options.compose.stiffening_lips = !a.no_lips;
+  options.web_fallback = !a.no_web_roots;
   sheetgen::GenerateProgress progress;
   std::signal(SIGINT, on_sigint);
   std::signal(SIGTERM, on_sigint);
@@ -272,6 +274,8 @@ int main(int argc, char** argv) {
   solve_cmd->add_flag("--right-angles", solve_args.right_angles, "restrict bends to +-90 degrees and no skew (the expert's practice)");
   solve_cmd->add_flag("--no-self-rivet", solve_args.no_self_rivet, "do not try self-riveting (for the ablation of paper Fig. 9)");
   solve_cmd->add_flag("--no-lips", solve_args.no_lips, "do not try stiffening lips on the free edges (the paper's method alone)");
+  solve_cmd->add_flag("--no-web-roots", solve_args.no_web_roots,
+                      "do not search a load again with web roots when the first search finds no valid part");
 
   ExportCcxArgs ccx_args;
   auto* ccx = app.add_subcommand("export-ccx", "write one load's part as a CalculiX input deck");

@@ -208,7 +208,10 @@ ComposeResult compose_part(const Problem& problem, const Environment& env, int l
 
   // Level 1: every segment with its ancestors.
   std::vector<std::vector<int>> frontier;
+  // Web roots (rivet_area < 0) reach no support: they only enter as the
+  // ancestors of segments grown from them.
   for (const Segment& s : library.segments()) {
+    if (s.rivet_area < 0) continue;
     auto sub = closure(library, s.id);
     if (static_cast<int>(sub.size()) <= options.max_segments && !seen.count(key_of(sub))) {
       seen[key_of(sub)] = -1;
@@ -339,6 +342,7 @@ ComposeResult compose_part(const Problem& problem, const Environment& env, int l
     for (int i : beam)
       for (int s = 0; s < n; ++s) {
         const int id = library.segments()[s].id;
+        if (library.segments()[s].rivet_area < 0) continue;
         if (std::binary_search(all[i].segments.begin(), all[i].segments.end(), id)) continue;
         auto sub = unite(all[i].segments, closure(library, id));
         if (static_cast<int>(sub.size()) > options.max_segments) continue;
@@ -354,7 +358,9 @@ ComposeResult compose_part(const Problem& problem, const Environment& env, int l
   if (!result.found) {
     const Candidate& c = result.closest;
     std::ostringstream why;
-    if (library.empty()) {
+    const bool connects = std::any_of(library.segments().begin(), library.segments().end(),
+                                      [](const Segment& s) { return s.rivet_area >= 0; });
+    if (!connects) {
       why << "no segment reached a rivet area (discovery found no connection from the load to any rivet area)";
     } else if (c.segments.empty()) {
       why << "no candidate could be evaluated";

@@ -85,6 +85,88 @@ struct CancelRelay {
   }
 };
 
+// One search for one load: discovery, composition on the search mesh, then the
+// final check at the default mesh down the list of valid candidates, cheapest first.
+struct SearchPass {
+  bool web_roots = false;
+  bool cancelled = false;
+  bool ok = false;
+  Candidate part;  // the answer or the closest candidate
+  std::string reason;
+  DiscoveryStats discovery;
+  int library_size = 0;
+  std::vector<ComposeHistoryRow> history;
+  int fem_calls = 0, self_rivet_candidates = 0, lip_candidates = 0;
+  double discovery_seconds = 0, composition_seconds = 0;
+};
+
+SearchPass search_pass(const Problem& scene, const Environment& env, int li, const GenerateOptions& options,
+                       bool web_roots, GenerateProgress* progress) {
+  SearchPass pass;
+  pass.web_roots = web_roots;
+  if (progress) progress->stage = static_cast<int>(Stage::Discovery);
+  DiscoveryOptions dopt = DiscoveryOptions::from(scene);
+  dopt.web_roots = web_roots;
+  auto t0 = std::chrono::steady_clock::now();
+  DiscoveryResult found = discover_segments(scene, env, li, dopt, progress ? &progress->discovery : nullptr);
+  pass.discovery_seconds = seconds_since(t0);
+  pass.discovery = found.stats;
+  pass.library_size = found.library.size();
+  if (found.cancelled || (progress && progress->cancel.load())) {
+    pass.cancelled = true;
+    return pass;
+  }
+
+  if (progress) progress->stage = static_cast<int>(Stage::Composition);
+  ComposeOptions copt = options.compose;
+  copt.beam_width = scene.search.beam_width;
+  copt.threads = scene.search.threads;
+  t0 = std::chrono::steady_clock::now();
+  ComposeResult composed = compose_part(scene, env, li, found.base, found.library, copt, progress ? &progress->compose : nullptr);
+  if (composed.cancelled || (progress && progress->cancel.load())) {
+    pass.cancelled = true;
+    return pass;
+  }
+  pass.history = composed.history;
+  pass.fem_calls = composed.fem_calls;
+  pass.self_rivet_candidates = composed.self_rivet_candidates;
+  pass.lip_candidates = composed.lip_candidates;
+  std::string final_reason;
+  for (const Candidate& c : composed.valid) {
+    Candidate checked = evaluate_part(scene, env, li, c, 0.0, copt.bend_cost);
+    ++pass.fem_calls;
+    if (checked.valid()) {
+      pass.part = checked;
+      pass.ok = true;
+      break;
+    }
+    if (final_reason.empty() && checked.analysed)
+      final_reason = "at the default mesh the cheapest part misses its limits (compliance " + std::to_string(checked.fem.compliance) +
+                     " J, limit " + std::to_string(checked.fem.compliance_limit) + " J, MS " + std::to_string(checked.fem.margin_of_safety) + ")";
+  }
+  pass.composition_seconds = seconds_since(t0);
+  if (!pass.ok) {
+    pass.part = composed.found ? composed.valid.front() : composed.closest;
+    pass.reason = composed.found ? final_reason : composed.reason;
+  }
+  return pass;
+}
+
+// Of two answers without a valid part, is `a` nearer to valid than `b`? An
+// analysed candidate beats one that is not; then the larger of the compliance
+// and strength ratios (how far over the limits) decides.
+bool closer(const Candidate& a, const Candidate& b, const Problem& scene) {
+  if (a.analysed != b.analysed) return a.analysed;
+  if (!a.analysed) return false;
+  auto over = [&](const Candidate& c) {
+    const double stiff = c.fem.compliance_limit > 0 ? c.fem.compliance / c.fem.compliance_limit : 0.0;
+    const double ms_req = scene.requirements.min_margin_of_safety;
+    const double strong = (1.0 + ms_req) / std::max(1e-12, 1.0 + c.fem.margin_of_safety);
+    return std::max(stiff, strong);
+  };
+  return over(a) < over(b);
+}
+
 }  // namespace
 
 GenerateResult generate(const Problem& input, const GenerateOptions& options, GenerateProgress* progress) {
@@ -108,6 +190,7 @@ GenerateResult generate(const Problem& input, const GenerateOptions& options, Ge
   result.right_angles = options.right_angles;
   result.self_rivet = options.compose.self_rivet;
   result.stiffening_lips = options.compose.stiffening_lips;
+  result.web_fallback = options.web_fallback;
   if (progress) progress->loads = static_cast<int>(problem.loads.size());
   CancelRelay relay(progress);
   auto cancelled = [&] { return progress && progress->cancel.load(); };
@@ -161,57 +244,40 @@ GenerateResult generate(const Problem& input, const GenerateOptions& options, Ge
       }
     }
 
-    // Discovery.
-    if (progress) progress->stage = static_cast<int>(Stage::Discovery);
-    DiscoveryOptions dopt = DiscoveryOptions::from(scene);
-    auto t0 = std::chrono::steady_clock::now();
-    DiscoveryResult found = discover_segments(scene, env, li, dopt, progress ? &progress->discovery : nullptr);
-    out.discovery_seconds = seconds_since(t0);
-    out.discovery = found.stats;
-    out.library_size = found.library.size();
-    if (found.cancelled || cancelled()) {
-      result.cancelled = true;
-      break;
-    }
-
-    // Composition on the search mesh, then the final check at the default mesh
-    // down the list of valid candidates, cheapest first.
-    if (progress) progress->stage = static_cast<int>(Stage::Composition);
-    ComposeOptions copt = options.compose;
-    copt.beam_width = scene.search.beam_width;
-    copt.threads = scene.search.threads;
-    t0 = std::chrono::steady_clock::now();
-    ComposeResult composed = compose_part(scene, env, li, found.base, found.library, copt, progress ? &progress->compose : nullptr);
-    if (composed.cancelled || cancelled()) {
-      result.cancelled = true;
-      break;
-    }
-    out.history = composed.history;
-    out.fem_calls = composed.fem_calls;
-    out.self_rivet_candidates = composed.self_rivet_candidates;
-    out.lip_candidates = composed.lip_candidates;
-    bool final_ok = false;
-    std::string final_reason;
-    for (const Candidate& c : composed.valid) {
-      Candidate checked = evaluate_part(scene, env, li, c, 0.0, copt.bend_cost);
-      ++out.fem_calls;
-      if (checked.valid()) {
-        out.part = checked;
-        final_ok = true;
-        break;
+    // Discovery and composition; when that finds no valid part, once more with
+    // web roots (docs/discovery.md "Web roots"): the plates of the first pass
+    // may be too soft where the way to the rivet areas is narrow.
+    SearchPass pass = search_pass(scene, env, li, options, /*web_roots=*/false, progress);
+    if (!pass.cancelled && !pass.ok && options.web_fallback && !cancelled()) {
+      SearchPass webbed = search_pass(scene, env, li, options, /*web_roots=*/true, progress);
+      webbed.discovery_seconds += pass.discovery_seconds;
+      webbed.composition_seconds += pass.composition_seconds;
+      webbed.fem_calls += pass.fem_calls;
+      // The web pass's answer, unless it is cancelled or (still no part) further off than the first's.
+      if (webbed.cancelled || webbed.ok || closer(webbed.part, pass.part, scene)) pass = std::move(webbed);
+      else {
+        pass.discovery_seconds = webbed.discovery_seconds;
+        pass.composition_seconds = webbed.composition_seconds;
+        pass.fem_calls = webbed.fem_calls;
       }
-      if (final_reason.empty() && checked.analysed)
-        final_reason = "at the default mesh the cheapest part misses its limits (compliance " + std::to_string(checked.fem.compliance) +
-                       " J, limit " + std::to_string(checked.fem.compliance_limit) + " J, MS " + std::to_string(checked.fem.margin_of_safety) + ")";
+      out.web_pass_tried = true;
     }
-    out.composition_seconds = seconds_since(t0);
-    if (final_ok) {
-      out.ok = true;
-    } else {
-      out.ok = false;
-      out.part = composed.found ? composed.valid.front() : composed.closest;
-      out.reason = composed.found ? final_reason : composed.reason;
+    if (pass.cancelled || cancelled()) {
+      result.cancelled = true;
+      break;
     }
+    out.web_roots = pass.web_roots;
+    out.discovery_seconds = pass.discovery_seconds;
+    out.discovery = pass.discovery;
+    out.library_size = pass.library_size;
+    out.history = pass.history;
+    out.fem_calls = pass.fem_calls;
+    out.self_rivet_candidates = pass.self_rivet_candidates;
+    out.lip_candidates = pass.lip_candidates;
+    out.composition_seconds = pass.composition_seconds;
+    out.ok = pass.ok;
+    out.part = std::move(pass.part);
+    out.reason = pass.reason;
 
     // Manufacturing plan and rivets of the answer.
     if (progress) progress->stage = static_cast<int>(Stage::Plan);
@@ -280,6 +346,8 @@ nlohmann::json result_json(const Problem& problem, const GenerateResult& result,
     p["fem_calls"] = o.fem_calls;
     p["self_rivet_candidates"] = o.self_rivet_candidates;
     p["lip_candidates"] = o.lip_candidates;
+    p["web_pass_tried"] = o.web_pass_tried;
+    p["web_roots"] = o.web_roots;
     p["timing"] = {{"environment_s", o.environment_seconds}, {"discovery_s", o.discovery_seconds},
                    {"composition_s", o.composition_seconds}, {"total_s", o.total_seconds}};
     parts.push_back(p);
@@ -291,7 +359,8 @@ nlohmann::json result_json(const Problem& problem, const GenerateResult& result,
   doc["search"] = {{"chains", result.search.chains},         {"iterations", result.search.iterations},
                    {"beam_width", result.search.beam_width}, {"seed", result.search.seed},
                    {"threads", result.search.threads},       {"right_angles", result.right_angles},
-                   {"self_rivet", result.self_rivet},         {"stiffening_lips", result.stiffening_lips}};
+                   {"self_rivet", result.self_rivet},         {"stiffening_lips", result.stiffening_lips},
+                   {"web_fallback", result.web_fallback}};
   doc["timing"] = {{"total_s", result.seconds}};
   return doc;
 }

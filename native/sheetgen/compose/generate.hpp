@@ -23,6 +23,9 @@ struct GenerateOptions {
   std::optional<int> chains, iterations, beam_width, threads;
   std::optional<std::uint64_t> seed;
   bool right_angles = false;   // the expert's practice: theta3 = +-90 deg, no skew (--right-angles)
+  // A load whose first search finds no valid part is searched again with web
+  // roots (docs/discovery.md "Web roots"); off: --no-web-roots.
+  bool web_fallback = true;
   ComposeOptions compose;      // beam_width and threads are taken from the settings above
 };
 
@@ -52,6 +55,8 @@ struct LoadOutcome {
   int fem_calls = 0;
   int self_rivet_candidates = 0;     // gusset variants the composition tried
   int lip_candidates = 0;            // lipped variants the composition tried
+  bool web_pass_tried = false;       // the first search found no valid part, a second ran with web roots
+  bool web_roots = false;            // the answer comes from that second search
   double environment_seconds = 0, discovery_seconds = 0, composition_seconds = 0, total_seconds = 0;
 };
 
@@ -60,6 +65,7 @@ struct GenerateResult {
   SearchSettings search;              // the settings used (the problem's, with the options' overrides)
   bool right_angles = false;
   bool self_rivet = true, stiffening_lips = true;  // the composition's variants that were on
+  bool web_fallback = true;           // a second search with web roots where the first found no part
   bool cancelled = false;
   double seconds = 0;
   bool all_ok() const;

@@ -549,7 +549,7 @@ void recount_frozen(Chain& ch) {
 // Freezes an admitted segment into its chain: its feeler branch goes, its tabs
 // are inserted at the end of the frozen region.
 void freeze(Chain& ch, const Segment& s, int feeler_tag) {
-  const int branch = find_tag(ch.part, feeler_tag);
+  const int branch = feeler_tag <= kFeelerTagBase ? find_tag(ch.part, feeler_tag) : -1;
   if (branch >= 0) ch.part = remove_subtrees(ch.part, {branch});
   const int attach = frozen_index(ch, s.parent, s.parent_tab);
   if (attach < 0) return;
@@ -611,6 +611,13 @@ DiscoveryResult discover_segments(const Problem& problem, const Environment& env
                     &chains[c].stats.admitted_per_ra})
       v->assign(cx.nra, 0);
   }
+  // Web roots go into the library first and into every chain, frozen: the
+  // chains grow feelers from their edges like from any admitted segment.
+  if (o.web_roots)
+    for (Segment& web : make_web_roots(result.base, env, cx.spec, cx.prior, o.webs)) {
+      const AdmissionResult r = result.library.add(std::move(web));
+      for (auto& ch : chains) freeze(ch, *result.library.find(r.id), /*feeler_tag=*/-1);
+    }
   if (progress) {
     progress->total = static_cast<long long>(o.chains) * o.iterations;
     progress->iterations = 0;

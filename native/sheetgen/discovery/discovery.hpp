@@ -13,6 +13,7 @@
 #include "sheetgen/discovery/segment_library.hpp"
 #include "sheetgen/discovery/segment_optimiser.hpp"
 #include "sheetgen/discovery/target.hpp"
+#include "sheetgen/discovery/web_roots.hpp"
 
 namespace sheetgen {
 
@@ -50,6 +51,12 @@ struct DiscoveryOptions {
   ContractOptions contract;
   MergeOptions merge;
   WidenOptions widen;
+  // Web roots (docs/discovery.md "Web roots"): hang a web from every base edge
+  // before the chains start, frozen into every chain, so feelers can also leave
+  // the load edge-on. generate() turns this on for a second pass when the first
+  // finds no valid part.
+  bool web_roots = false;
+  WebRootOptions webs;
   // chains, iterations, seed, threads, alpha, beta, scene_unit from Problem::search.
   static DiscoveryOptions from(const Problem& problem);
 };

@@ -51,6 +51,7 @@ double SegmentLibrary::distance_to_library(const Segment& s, int* nearest) const
   double best = std::numeric_limits<double>::infinity();
   int who = -1;
   for (const Segment& o : segments_) {
+    if (o.rivet_area < 0) continue;  // web roots (no connection) are not compared
     const double d = segment_distance(s, o);
     if (d < best) { best = d; who = o.id; }
   }

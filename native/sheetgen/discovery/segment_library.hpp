@@ -19,7 +19,8 @@ struct Segment {
   int parent_edge = 0;
   // The tabs as a Part fragment: tabs[0].parent = -1 (attached as above),
   // tabs[k].parent = index into this vector (< k). The last tab is the rivet
-  // flange (rivet_area >= 0). Tags are ignored.
+  // flange (rivet_area >= 0), except in a web root (web_roots.hpp), which
+  // has no flange and rivet_area = -1. Tags are ignored.
   std::vector<Tab> tabs;
   int rivet_area = -1;
   double area = 0;          // m^2, sum of w * l over the tabs (each tab's area is exactly w l)
