@@ -11,7 +11,7 @@ where every number comes from):
   corner_obstacle corner with a pipe housing in the way                (make_sample_scenes.py)
   slanted         rivet plane at 45 degrees                            (make_sample_scenes.py)
   sharp_angles    an overhanging plane (60 deg, facing down) and a 70 deg plane, turned 25 deg about z (new)
-  boxed_in        box walled in by equipment, one 100 x 100 mm window out    (new)
+  boxed_in        box walled in by equipment, one 100 mm tall slot out       (new)
   bulkhead_hole   rivet areas only behind a lightening hole in a bulkhead    (new)
   maze            five rivet areas in a row behind baffles             (make_maze_scene.py)
   avionics_bay    ten boxes between frames, stringers, a shelf and equipment (new)
@@ -168,27 +168,27 @@ def sharp_angles():
 
 
 def boxed_in():
-    """A box walled in by equipment on five sides; the only way out is a 100 x 100 mm window."""
+    """A box walled in by equipment on five sides; the only way out is a 100 mm tall slot in the front baffle."""
     env, floor, frame = Mesh(), Mesh(), Mesh()
     env.box([-0.20, -0.20, 0.00], [0.12, 0.20, 0.15])   # equipment below (60 mm under the base)
     env.box([-0.20, 0.09, 0.15], [0.12, 0.20, 0.34])    # equipment at +y (30 mm gap)
     env.box([-0.20, -0.20, 0.15], [0.12, -0.09, 0.34])  # equipment at -y
     env.box([-0.20, -0.09, 0.15], [-0.10, 0.09, 0.34])  # equipment behind (-x)
     env.box([-0.20, -0.20, 0.32], [0.12, 0.20, 0.34])   # cover above (30 mm over the box)
-    # front baffle at x 0.12..0.13 with a window y -0.05..0.05, z 0.15..0.25
-    env.box([0.12, -0.20, 0.15], [0.13, -0.05, 0.34])
-    env.box([0.12, 0.05, 0.15], [0.13, 0.20, 0.34])
-    env.box([0.12, -0.05, 0.25], [0.13, 0.05, 0.34])
+    # front baffle at x 0.12..0.13 with a slot y -0.09..0.09, z 0.15..0.25 (the cavity's width, 100 mm tall)
+    env.box([0.12, -0.20, 0.15], [0.13, -0.09, 0.34])
+    env.box([0.12, 0.09, 0.15], [0.13, 0.20, 0.34])
+    env.box([0.12, -0.09, 0.25], [0.13, 0.09, 0.34])
     fcells = floor.grid([0.10, -0.25, 0.0], [0.40, 0, 0], [0, 0.5, 0], 8, 10)       # x 0.10..0.50, z = 0
     rcells = frame.grid([0.45, 0.25, 0.0], [0, -0.5, 0], [0, 0, 0.45], 10, 9)       # x = 0.45, normal -x
     ras = [
-        {"name": "floor_rivets", "mesh": "floor", "faces": faces_in(fcells, (2, 6), (2, 8))},   # x 0.20..0.40, y -0.15..0.15
+        {"name": "floor_rivets", "mesh": "floor", "faces": faces_in(fcells, (1, 6), (2, 8))},   # x 0.15..0.40, y -0.15..0.15
         {"name": "frame_rivets", "mesh": "frame", "faces": faces_in(rcells, (2, 8), (2, 7))},   # y -0.15..0.15, z 0.10..0.35
     ]
-    loads = [load("avionics_box", 3.0, [0.0, 0.0, 0.25], [0.14, 0.12, 0.08])]
+    loads = [load("avionics_box", 2.0, [0.0, 0.0, 0.25], [0.14, 0.12, 0.08])]
     write_problem("boxed_in", [("equipment", env), ("floor", floor), ("frame", frame)], ras, loads,
-                  "A 3 kg box at 9 g walled in by equipment (30 mm gaps); the only way out is a 100 x 100 mm "
-                  "window to a floor and a frame outside")
+                  "A 2 kg box at 9 g walled in by equipment (30 mm gaps); the only way out is a 100 mm tall slot "
+                  "in the front baffle to a floor and a frame outside")
 
 
 def bulkhead_hole():
