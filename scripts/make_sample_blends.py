@@ -1,4 +1,4 @@
-"""Writes sample_scenes/<scene>/scene.blend for corner, corner_obstacle and slanted.
+"""Writes sample_scenes/<scene>/scene.blend for every scene of the library (docs/scenes.md).
 
     blender -b --factory-startup --python-exit-code 1 --python scripts/make_sample_blends.py [-- SCENE ...]
 
@@ -11,7 +11,8 @@ import os
 import sys
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
-SCENES = ("corner", "corner_obstacle", "slanted")
+SCENES = ("shelf", "corner", "wall_standoff", "corner_obstacle", "slanted", "sharp_angles", "boxed_in", "bulkhead_hole",
+          "maze", "avionics_bay")
 
 
 def frame_views(scene):
