@@ -253,7 +253,7 @@ GenerateResult generate(const Problem& input, const GenerateOptions& options, Ge
       webbed.discovery_seconds += pass.discovery_seconds;
       webbed.composition_seconds += pass.composition_seconds;
       webbed.fem_calls += pass.fem_calls;
-      // The web pass's answer, unless it is cancelled or (still no part) further off than the first's.
+      // Keep the web pass's answer when it is valid or nearer to valid; a cancelled web pass ends the run below.
       if (webbed.cancelled || webbed.ok || closer(webbed.part, pass.part, scene)) pass = std::move(webbed);
       else {
         pass.discovery_seconds = webbed.discovery_seconds;
