@@ -547,7 +547,8 @@ void recount_frozen(Chain& ch) {
 }
 
 // Freezes an admitted segment into its chain: its feeler branch goes, its tabs
-// are inserted at the end of the frozen region.
+// are inserted at the end of the frozen region. A feeler_tag that is not a
+// feeler's (> kFeelerTagBase, e.g. -1 for web roots) removes nothing.
 void freeze(Chain& ch, const Segment& s, int feeler_tag) {
   const int branch = feeler_tag <= kFeelerTagBase ? find_tag(ch.part, feeler_tag) : -1;
   if (branch >= 0) ch.part = remove_subtrees(ch.part, {branch});

@@ -31,6 +31,17 @@ Problem scene(double floor_z) {
   return p;
 }
 
+// The scene, its environment and sheet rules, the base part alone, and its webs.
+struct Webs {
+  Problem p;
+  Environment env;
+  SheetSpec spec;
+  Part base;
+  explicit Webs(double floor_z)
+      : p(scene(floor_z)), env(p), spec(SheetSpec::from(p)), base(make_base_part(p.loads[0], 0, p.material.thickness)) {}
+  std::vector<Segment> make(const WebRootOptions& o = {}) const { return make_web_roots(base, env, spec, resolve_prior({}, spec), o); }
+};
+
 Part with_webs(const Part& base, const std::vector<Segment>& webs) {
   Part part = base;
   for (const Segment& s : webs) part.add_tab(0, s.parent_edge, s.tabs[0].params, -1);
@@ -38,11 +49,11 @@ Part with_webs(const Part& base, const std::vector<Segment>& webs) {
 }
 
 TEST(WebRoots, HangFromEveryEdgeAndStopTheClearanceAboveTheFloor) {
-  const Problem p = scene(0.25);
-  const Environment env(p);
-  const SheetSpec spec = SheetSpec::from(p);
-  const Part base = make_base_part(p.loads[0], 0, p.material.thickness);
-  const std::vector<Segment> webs = make_web_roots(base, env, spec, resolve_prior({}, spec));
+  const Webs w(0.25);
+  const Problem& p = w.p;
+  const Environment& env = w.env;
+  const SheetSpec& spec = w.spec;
+  const std::vector<Segment> webs = w.make();
   ASSERT_EQ(webs.size(), 4u);
   const double gap = 0.3 - 0.25;                                          // m, base to floor
   const double need = 0.5 * p.material.thickness + p.requirements.clearance;  // t/2 + clearance
@@ -59,7 +70,7 @@ TEST(WebRoots, HangFromEveryEdgeAndStopTheClearanceAboveTheFloor) {
     EXPECT_GE(l, gap - need - env.voxel_size());
     EXPECT_NEAR(s.area, s.tabs[0].params.w * l, 1e-15);
   }
-  const Part part = with_webs(base, webs);
+  const Part part = with_webs(w.base, webs);
   const RealisedPart rp = realise(part);
   for (int i = 1; i < part.size(); ++i)
     for (const Vec3& c : rp.tabs[i].corners) EXPECT_GE(c.z(), 0.25 + need - 1e-9) << "web " << i;
@@ -71,24 +82,18 @@ TEST(WebRoots, HangFromEveryEdgeAndStopTheClearanceAboveTheFloor) {
 }
 
 TEST(WebRoots, WithNothingBelowAreAsDeepAsTheLongestEdge) {
-  const Problem p = scene(0);
-  const Environment env(p);
-  const SheetSpec spec = SheetSpec::from(p);
-  const Part base = make_base_part(p.loads[0], 0, p.material.thickness);
-  const std::vector<Segment> webs = make_web_roots(base, env, spec, resolve_prior({}, spec));
+  const Webs w(0);
+  const std::vector<Segment> webs = w.make();
   ASSERT_EQ(webs.size(), 4u);
   for (const Segment& s : webs) EXPECT_DOUBLE_EQ(s.tabs[0].params.l, 0.10);
   WebRootOptions o;
   o.max_depth = 0.03;
-  for (const Segment& s : make_web_roots(base, env, spec, resolve_prior({}, spec), o)) EXPECT_DOUBLE_EQ(s.tabs[0].params.l, 0.03);
+  for (const Segment& s : w.make(o)) EXPECT_DOUBLE_EQ(s.tabs[0].params.l, 0.03);
 }
 
 TEST(WebRoots, NoneWhereTheFloorLeavesLessThanAMinimumTab) {
-  const Problem p = scene(0.29);  // 10 mm below the base: less than min_tab_length (16 mm) + clearance
-  const Environment env(p);
-  const SheetSpec spec = SheetSpec::from(p);
-  const Part base = make_base_part(p.loads[0], 0, p.material.thickness);
-  EXPECT_TRUE(make_web_roots(base, env, spec, resolve_prior({}, spec)).empty());
+  const Webs w(0.29);  // 10 mm below the base: less than min_tab_length (16 mm) + clearance
+  EXPECT_TRUE(w.make().empty());
 }
 
 TEST(WebRoots, DiscoveryGrowsConnectingSegmentsFromThem) {
