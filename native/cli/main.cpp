@@ -214,8 +214,10 @@ int solve(const SolveArgs& a) {
       const long long done = progress.discovery.iterations.load(), total = std::max(1LL, progress.discovery.total.load());
       const int width = 30;
       const int filled = stage >= sheetgen::Stage::Composition ? width : static_cast<int>(width * done / total);
+      // The second search of a load (web roots, docs/pipeline.md) restarts the bar; say so.
+      const std::string label = std::string(sheetgen::to_string(stage)) + (progress.web_roots.load() ? " (webs)" : "");
       std::fprintf(stderr, "\r  load %d/%d [%-*s] %-18s segments %3d  evaluated %4d  best %.1f cm^2   ", progress.load.load() + 1,
-                   progress.loads.load(), width, std::string(filled, '#').c_str(), sheetgen::to_string(stage),
+                   progress.loads.load(), width, std::string(filled, '#').c_str(), label.c_str(),
                    progress.discovery.segments.load(), progress.compose.evaluated.load(), progress.compose.best_cost.load() * 1e4);
     }
     std::this_thread::sleep_for(std::chrono::milliseconds(100));

@@ -104,7 +104,10 @@ SearchPass search_pass(const Problem& scene, const Environment& env, int li, con
                        bool web_roots, GenerateProgress* progress) {
   SearchPass pass;
   pass.web_roots = web_roots;
-  if (progress) progress->stage = static_cast<int>(Stage::Discovery);
+  if (progress) {
+    progress->web_roots = web_roots;
+    progress->stage = static_cast<int>(Stage::Discovery);
+  }
   DiscoveryOptions dopt = DiscoveryOptions::from(scene);
   dopt.web_roots = web_roots;
   auto t0 = std::chrono::steady_clock::now();

@@ -36,6 +36,7 @@ struct GenerateProgress {
   std::atomic<int> stage{0};          // Stage
   std::atomic<int> load{0};           // index of the load being worked on
   std::atomic<int> loads{0};          // how many
+  std::atomic<bool> web_roots{false}; // the current load's second search (with web roots) is running
   DiscoveryProgress discovery;        // iterations / total of the current load
   ComposeProgress compose;            // level, evaluated, best cost
   std::atomic<bool> cancel{false};    // set from any thread; honoured within a second
