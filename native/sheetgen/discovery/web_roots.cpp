@@ -41,7 +41,7 @@ std::vector<Segment> make_web_roots(const Part& base, const Environment& env, co
       const int i = trial.add_tab(0, e, TabParameters{0.0, w, l_min, 0.0, 0.0, -0.5 * M_PI});
       const CastResult cast = cast_tab_length(trial, realise(trial), i, env, spec, prior);
       const double l = std::min(cast.length, max_depth);
-      if (l < l_min) break;  // no room below this edge at any inset
+      if (l < l_min) continue;  // an obstacle under this corner may leave room for a narrower web
       trial.tabs[i].params.l = l;
       const RealisedPart rp = realise(trial);
       ValidityOptions vo;

@@ -96,6 +96,28 @@ TEST(WebRoots, NoneWhereTheFloorLeavesLessThanAMinimumTab) {
   EXPECT_TRUE(w.make().empty());
 }
 
+// A plate 15 mm under the base's (+x, +y) corner (less than a minimum tab plus
+// clearance). Edge 1 (+x side, from (+x, -y) to (+x, +y)) ends at that corner:
+// the insets 4.8 and 9.6 mm leave its web over the plate, 19.2 mm clears it
+// (its end at y = 20.8 mm, the plate from y = 30 mm). Edge 2 starts at the
+// corner, where no inset helps: no web there.
+TEST(WebRoots, ANarrowerWebPassesAnObstacleUnderACorner) {
+  Problem p = scene(0);
+  p.meshes.push_back({"plate", quad(Vec3(0.045, 0.03, 0.285), Vec3(0.03, 0, 0), Vec3(0, 0.03, 0)), "<inline>"});
+  const Environment env(p);
+  const SheetSpec spec = SheetSpec::from(p);
+  const Part base = make_base_part(p.loads[0], 0, p.material.thickness);
+  const std::vector<Segment> webs = make_web_roots(base, env, spec, resolve_prior({}, spec));
+  const Segment* on1 = nullptr;
+  for (const Segment& s : webs) {
+    EXPECT_NE(s.parent_edge, 2);
+    if (s.parent_edge == 1) on1 = &s;
+  }
+  ASSERT_NE(on1, nullptr);
+  EXPECT_NEAR(on1->tabs[0].params.w, 0.08 - 19.2e-3, 1e-12);
+  EXPECT_DOUBLE_EQ(on1->tabs[0].params.l, 0.10);  // nothing below it: the longest base edge
+}
+
 TEST(WebRoots, DiscoveryGrowsConnectingSegmentsFromThem) {
   const Problem p = scene(0.25);
   const Environment env(p);
