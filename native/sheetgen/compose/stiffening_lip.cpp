@@ -63,8 +63,7 @@ LipResult add_stiffening_lips(const Part& part, const Environment& env, const Pr
         ValidityOptions vo;
         vo.only_tab = idx;
         if (!check_validity(q, rq, env, vo).valid()) continue;
-        const FlatPattern flat = unfold(q, spec);
-        if (!flat.ok() || !check_flat_pattern(flat, spec).valid()) continue;
+        if (!unfolds_cleanly(q, spec)) continue;
         out.part = std::move(q);
         out.added_area += span->width() * l;
         ++out.lips;

@@ -27,9 +27,7 @@ double SegmentWork::area() const {
 
 bool segment_valid(const SegmentWork& work, const Environment& env, const SheetSpec& spec) {
   const RealisedPart rp = realise(work.part);
-  if (!check_validity(work.part, rp, env).valid()) return false;
-  const FlatPattern flat = unfold(work.part, spec);
-  return flat.ok() && check_flat_pattern(flat, spec).valid();
+  return check_validity(work.part, rp, env).valid() && unfolds_cleanly(work.part, spec);
 }
 
 namespace {
@@ -354,10 +352,7 @@ WidenResult widen_segment(SegmentWork& work, const Environment& env, const Sheet
           ok = check_validity(next.part, realise(next.part), env, vo).valid();
           vo.only_tab = i;
         }
-        if (ok) {
-          const FlatPattern flat = unfold(next.part, spec);
-          ok = flat.ok() && check_flat_pattern(flat, spec).valid();
-        }
+        if (ok) ok = unfolds_cleanly(next.part, spec);
         if (ok) {
           work = std::move(next);
           accepted = true;

@@ -10,15 +10,6 @@
 
 namespace sheetgen {
 
-namespace {
-
-bool unfolds(const Part& part, const SheetSpec& spec) {
-  const FlatPattern flat = unfold(part, spec);
-  return flat.ok() && check_flat_pattern(flat, spec).valid();
-}
-
-}  // namespace
-
 std::vector<Segment> make_web_roots(const Part& base, const Environment& env, const SheetSpec& spec,
                                     const FeelerPrior& prior, const WebRootOptions& options) {
   std::vector<Segment> out;
@@ -46,7 +37,7 @@ std::vector<Segment> make_web_roots(const Part& base, const Environment& env, co
       const RealisedPart rp = realise(trial);
       ValidityOptions vo;
       vo.only_tab = i;
-      if (!check_validity(trial, rp, env, vo).valid() || !unfolds(trial, spec)) continue;
+      if (!check_validity(trial, rp, env, vo).valid() || !unfolds_cleanly(trial, spec)) continue;
       part = std::move(trial);
       Segment s;
       Tab t = part.tabs[i];

@@ -258,6 +258,11 @@ FlatPattern unfold(const Part& part, const SheetSpec& spec, const FlatPatternOpt
   return fp;
 }
 
+bool unfolds_cleanly(const Part& part, const SheetSpec& spec) {
+  const FlatPattern flat = unfold(part, spec);
+  return flat.ok() && check_flat_pattern(flat, spec).valid();
+}
+
 ValidityReport check_flat_pattern(const FlatPattern& flat, const SheetSpec& spec, const ValidityOptions& o) {
   ValidityReport report;
   if (!flat.ok()) {

@@ -75,6 +75,10 @@ FlatPattern unfold(const Part& part, const SheetSpec& spec, const FlatPatternOpt
 // (Manufacturing::kerf) apart. Reports FlatPatternOverlap with both tabs.
 ValidityReport check_flat_pattern(const FlatPattern& flat, const SheetSpec& spec, const ValidityOptions& options = {});
 
+// The part unfolds (status Ok) and its flat pattern has no overlap: the yes/no
+// the search asks of every changed part.
+bool unfolds_cleanly(const Part& part, const SheetSpec& spec);
+
 // Folds the flat pattern back using only its own data (pieces' sharp polygons,
 // bend lines, angles, dL): per tab, world corners of the mid-surface polygon in
 // the order of RealisedTab::corners. A consistency check of the plan.
