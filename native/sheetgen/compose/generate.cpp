@@ -86,24 +86,12 @@ struct CancelRelay {
 };
 
 // One search for one load: discovery, composition on the search mesh, then the
-// final check at the default mesh down the list of valid candidates, cheapest first.
-struct SearchPass {
-  bool web_roots = false;
-  bool cancelled = false;
-  bool ok = false;
-  Candidate part;  // the answer or the closest candidate
-  std::string reason;
-  DiscoveryStats discovery;
-  int library_size = 0;
-  std::vector<ComposeHistoryRow> history;
-  int fem_calls = 0, self_rivet_candidates = 0, lip_candidates = 0;
-  double discovery_seconds = 0, composition_seconds = 0;
-};
-
-SearchPass search_pass(const Problem& scene, const Environment& env, int li, const GenerateOptions& options,
-                       bool web_roots, GenerateProgress* progress) {
-  SearchPass pass;
-  pass.web_roots = web_roots;
+// final check at the default mesh down the list of valid candidates, cheapest
+// first. Fills the search's fields of `out` (answer or closest candidate,
+// reason, statistics, history, times); false when it was cancelled.
+bool search_pass(const Problem& scene, const Environment& env, int li, const GenerateOptions& options, bool web_roots,
+                 GenerateProgress* progress, LoadOutcome& out) {
+  out.web_roots = web_roots;
   if (progress) {
     progress->web_roots = web_roots;
     progress->stage = static_cast<int>(Stage::Discovery);
@@ -112,13 +100,10 @@ SearchPass search_pass(const Problem& scene, const Environment& env, int li, con
   dopt.web_roots = web_roots;
   auto t0 = std::chrono::steady_clock::now();
   DiscoveryResult found = discover_segments(scene, env, li, dopt, progress ? &progress->discovery : nullptr);
-  pass.discovery_seconds = seconds_since(t0);
-  pass.discovery = found.stats;
-  pass.library_size = found.library.size();
-  if (found.cancelled || (progress && progress->cancel.load())) {
-    pass.cancelled = true;
-    return pass;
-  }
+  out.discovery_seconds = seconds_since(t0);
+  out.discovery = found.stats;
+  out.library_size = found.library.size();
+  if (found.cancelled || (progress && progress->cancel.load())) return false;
 
   if (progress) progress->stage = static_cast<int>(Stage::Composition);
   ComposeOptions copt = options.compose;
@@ -126,33 +111,30 @@ SearchPass search_pass(const Problem& scene, const Environment& env, int li, con
   copt.threads = scene.search.threads;
   t0 = std::chrono::steady_clock::now();
   ComposeResult composed = compose_part(scene, env, li, found.base, found.library, copt, progress ? &progress->compose : nullptr);
-  if (composed.cancelled || (progress && progress->cancel.load())) {
-    pass.cancelled = true;
-    return pass;
-  }
-  pass.history = composed.history;
-  pass.fem_calls = composed.fem_calls;
-  pass.self_rivet_candidates = composed.self_rivet_candidates;
-  pass.lip_candidates = composed.lip_candidates;
+  if (composed.cancelled || (progress && progress->cancel.load())) return false;
+  out.history = composed.history;
+  out.fem_calls = composed.fem_calls;
+  out.self_rivet_candidates = composed.self_rivet_candidates;
+  out.lip_candidates = composed.lip_candidates;
   std::string final_reason;
   for (const Candidate& c : composed.valid) {
     Candidate checked = evaluate_part(scene, env, li, c, 0.0, copt.bend_cost);
-    ++pass.fem_calls;
+    ++out.fem_calls;
     if (checked.valid()) {
-      pass.part = checked;
-      pass.ok = true;
+      out.part = checked;
+      out.ok = true;
       break;
     }
     if (final_reason.empty() && checked.analysed)
       final_reason = "at the default mesh the cheapest part misses its limits (compliance " + std::to_string(checked.fem.compliance) +
                      " J, limit " + std::to_string(checked.fem.compliance_limit) + " J, MS " + std::to_string(checked.fem.margin_of_safety) + ")";
   }
-  pass.composition_seconds = seconds_since(t0);
-  if (!pass.ok) {
-    pass.part = composed.found ? composed.valid.front() : composed.closest;
-    pass.reason = composed.found ? final_reason : composed.reason;
+  out.composition_seconds = seconds_since(t0);
+  if (!out.ok) {
+    out.part = composed.found ? composed.valid.front() : composed.closest;
+    out.reason = composed.found ? final_reason : composed.reason;
   }
-  return pass;
+  return true;
 }
 
 // Of two answers without a valid part, is `a` nearer to valid than `b`? An
@@ -250,37 +232,27 @@ GenerateResult generate(const Problem& input, const GenerateOptions& options, Ge
     // Discovery and composition; when that finds no valid part, once more with
     // web roots (docs/discovery.md "Web roots"): the plates of the first pass
     // may be too soft where the way to the rivet areas is narrow.
-    SearchPass pass = search_pass(scene, env, li, options, /*web_roots=*/false, progress);
-    if (!pass.cancelled && !pass.ok && options.web_fallback && !cancelled()) {
-      SearchPass webbed = search_pass(scene, env, li, options, /*web_roots=*/true, progress);
-      webbed.discovery_seconds += pass.discovery_seconds;
-      webbed.composition_seconds += pass.composition_seconds;
-      webbed.fem_calls += pass.fem_calls;
-      // Keep the web pass's answer when it is valid or nearer to valid; a cancelled web pass ends the run below.
-      if (webbed.cancelled || webbed.ok || closer(webbed.part, pass.part, scene)) pass = std::move(webbed);
-      else {
-        pass.discovery_seconds = webbed.discovery_seconds;
-        pass.composition_seconds = webbed.composition_seconds;
-        pass.fem_calls = webbed.fem_calls;
-      }
-      out.web_pass_tried = true;
+    LoadOutcome first = out;
+    bool finished = search_pass(scene, env, li, options, /*web_roots=*/false, progress, first);
+    if (finished && !first.ok && options.web_fallback && !cancelled()) {
+      LoadOutcome webbed = out;
+      finished = search_pass(scene, env, li, options, /*web_roots=*/true, progress, webbed);
+      webbed.web_pass_tried = first.web_pass_tried = true;
+      // Times and FEM calls count both passes; the answer is the web pass's
+      // when it is valid or nearer to valid.
+      const double discovery_s = first.discovery_seconds + webbed.discovery_seconds;
+      const double composition_s = first.composition_seconds + webbed.composition_seconds;
+      const int fem_calls = first.fem_calls + webbed.fem_calls;
+      if (webbed.ok || closer(webbed.part, first.part, scene)) first = std::move(webbed);
+      first.discovery_seconds = discovery_s;
+      first.composition_seconds = composition_s;
+      first.fem_calls = fem_calls;
     }
-    if (pass.cancelled || cancelled()) {
+    if (!finished || cancelled()) {
       result.cancelled = true;
       break;
     }
-    out.web_roots = pass.web_roots;
-    out.discovery_seconds = pass.discovery_seconds;
-    out.discovery = pass.discovery;
-    out.library_size = pass.library_size;
-    out.history = pass.history;
-    out.fem_calls = pass.fem_calls;
-    out.self_rivet_candidates = pass.self_rivet_candidates;
-    out.lip_candidates = pass.lip_candidates;
-    out.composition_seconds = pass.composition_seconds;
-    out.ok = pass.ok;
-    out.part = std::move(pass.part);
-    out.reason = pass.reason;
+    out = std::move(first);
 
     // Manufacturing plan and rivets of the answer.
     if (progress) progress->stage = static_cast<int>(Stage::Plan);
