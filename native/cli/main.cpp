@@ -173,6 +173,7 @@ struct SolveArgs {
   std::optional<std::uint64_t> seed;
   std::optional<int> chains, iterations, beam, threads;
   bool right_angles = false;
+  bool flat_extensions = false;
   bool no_self_rivet = false;
   bool no_lips = false;
   bool no_web_roots = false;
@@ -189,6 +190,7 @@ int solve(const SolveArgs& a) {
   options.threads = a.threads;
   options.seed = a.seed;
   options.right_angles = a.right_angles;
+  options.flat_extensions = a.flat_extensions;
   options.compose.self_rivet = !a.no_self_rivet;
   options.compose.stiffening_lips = !a.no_lips;
   options.web_fallback = !a.no_web_roots;
@@ -273,7 +275,10 @@ int main(int argc, char** argv) {
   solve_cmd->add_option("--iterations", solve_args.iterations, "iterations per chain (N)")->check(CLI::Range(1, 10000000));
   solve_cmd->add_option("--beam", solve_args.beam, "beam width of the composition (B)")->check(CLI::Range(1, 4096));
   solve_cmd->add_option("--threads", solve_args.threads, "worker threads (0 = all cores)")->check(CLI::Range(0, 1024));
-  solve_cmd->add_flag("--right-angles", solve_args.right_angles, "restrict bends to +-90 degrees and no skew (the expert's practice)");
+  solve_cmd->add_flag("--right-angles", solve_args.right_angles,
+                      "restrict bends to +-90 degrees (plus flat extensions) and no skew (the expert's practice)");
+  solve_cmd->add_flag("--flat-extensions", solve_args.flat_extensions,
+                      "let a tab continue its parent flat (0 degrees, no bend); on with --right-angles");
   solve_cmd->add_flag("--no-self-rivet", solve_args.no_self_rivet, "do not try self-riveting (for the ablation of paper Fig. 9)");
   solve_cmd->add_flag("--no-lips", solve_args.no_lips, "do not try stiffening lips on the free edges (the paper's method alone)");
   solve_cmd->add_flag("--no-web-roots", solve_args.no_web_roots,

@@ -171,8 +171,13 @@ GenerateResult generate(const Problem& input, const GenerateOptions& options, Ge
     problem.manufacturing.max_bend_angle = (90.0 + 0.5) * M_PI / 180.0;
     problem.manufacturing.max_skew = 1e-3;
   }
+  // An expert widens a right-angle bracket's plate by cutting it larger, not by
+  // bending it: without flat extensions the right-angle grammar can only turn
+  // 90 deg at every tab (docs/grammar.md "Flat extensions").
+  if (options.right_angles || options.flat_extensions) problem.manufacturing.flat_extensions = true;
   result.search = problem.search;
   result.right_angles = options.right_angles;
+  result.flat_extensions = problem.manufacturing.flat_extensions;
   result.self_rivet = options.compose.self_rivet;
   result.stiffening_lips = options.compose.stiffening_lips;
   result.web_fallback = options.web_fallback;
@@ -334,6 +339,7 @@ nlohmann::json result_json(const Problem& problem, const GenerateResult& result,
   doc["search"] = {{"chains", result.search.chains},         {"iterations", result.search.iterations},
                    {"beam_width", result.search.beam_width}, {"seed", result.search.seed},
                    {"threads", result.search.threads},       {"right_angles", result.right_angles},
+                   {"flat_extensions", result.flat_extensions},
                    {"self_rivet", result.self_rivet},         {"stiffening_lips", result.stiffening_lips},
                    {"web_fallback", result.web_fallback}};
   doc["timing"] = {{"total_s", result.seconds}};

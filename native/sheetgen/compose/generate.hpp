@@ -22,7 +22,10 @@ struct GenerateOptions {
   // Overrides of the problem's search settings (unset: the problem's value).
   std::optional<int> chains, iterations, beam_width, threads;
   std::optional<std::uint64_t> seed;
-  bool right_angles = false;   // the expert's practice: theta3 = +-90 deg, no skew (--right-angles)
+  bool right_angles = false;   // the expert's practice: theta3 = +-90 deg or flat, no skew (--right-angles)
+  // Tabs may continue their parent flat (Manufacturing::flat_extensions,
+  // --flat-extensions); right-angle mode turns it on by itself.
+  bool flat_extensions = false;
   // A load whose first search finds no valid part is searched again with web
   // roots (docs/discovery.md "Web roots"); off: --no-web-roots.
   bool web_fallback = true;
@@ -65,6 +68,7 @@ struct GenerateResult {
   std::vector<LoadOutcome> loads;
   SearchSettings search;              // the settings used (the problem's, with the options' overrides)
   bool right_angles = false;
+  bool flat_extensions = false;       // tabs could continue their parent flat (theta3 = 0)
   bool self_rivet = true, stiffening_lips = true;  // the composition's variants that were on
   bool web_fallback = true;           // a second search with web roots where the first found no part
   bool cancelled = false;

@@ -76,6 +76,11 @@ struct Manufacturing {  // lengths m, angles rad; defaults depend on thickness t
   double min_bend_angle = 5.0 * M_PI / 180.0;    // |theta3| lower limit
   double max_bend_angle = 135.0 * M_PI / 180.0;  // |theta3| upper limit (press brake tooling)
   double max_skew = 60.0 * M_PI / 180.0;         // |theta1|, |theta2| limit
+  // A tab may also continue its parent's plane (theta3 = 0 exactly): a flat
+  // extension, cut in one piece with its parent and not bent. Off in the paper's
+  // grammar; on in right-angle mode, where it is how an expert widens a plate
+  // (docs/grammar.md "Flat extensions").
+  bool flat_extensions = false;
   double rivet_diameter = 0;     // default: 2 t rounded up to 1/32 in, at least 3.2 mm (1/8 in)
   double rivet_edge_distance = 0;// default 2 * rivet_diameter (MIL-HDBK practice)
   double rivet_pitch = 0;        // default 6 * rivet_diameter

@@ -82,7 +82,8 @@ Segment make_segment(const SegmentWork& w) {
   s.rivet_area = w.plane.rivet_area;
   s.area = w.area();
   s.length = w.length();
-  s.bends = static_cast<int>(s.tabs.size());
+  s.bends = 0;
+  for (const Tab& t : s.tabs) s.bends += is_flat_extension(t.params) ? 0 : 1;
   s.root_a = rp.tabs[w.first].bend_start();
   s.root_b = rp.tabs[w.first].bend_end();
   s.connect_a = rp.tabs[w.flange].bend_start();

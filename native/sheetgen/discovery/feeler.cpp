@@ -38,8 +38,12 @@ std::optional<TabParameters> sample_feeler_parameters(const FeelerPrior& prior, 
   p.d = rng.uniform(0.0, edge_length - w);
   p.theta1 = rng.uniform(-prior.max_skew, prior.max_skew);
   p.theta2 = rng.uniform(-prior.max_skew, prior.max_skew);
-  const double mag = rng.uniform(prior.min_bend_angle, prior.max_bend_angle);
-  p.theta3 = rng.uniform() < 0.5 ? -mag : mag;
+  if (spec.manufacturing.flat_extensions && rng.uniform() < prior.flat_probability) {
+    p.theta3 = 0.0;  // a flat extension: the feeler widens or lengthens its parent's plate
+  } else {
+    const double mag = rng.uniform(prior.min_bend_angle, prior.max_bend_angle);
+    p.theta3 = rng.uniform() < 0.5 ? -mag : mag;
+  }
   p.l = 0;
   return p;
 }

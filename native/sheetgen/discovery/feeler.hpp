@@ -24,6 +24,8 @@ struct FeelerPrior {
   double max_bend_angle = -1;   // rad, |theta3| <= this; < 0 = Manufacturing::max_bend_angle (sign uniform)
   double max_skew = -1;         // rad, |theta1|, |theta2| <= this; < 0 = Manufacturing::max_skew
   double max_length = -1;       // m, l_max of a cast; < 0 = Manufacturing::max_tab_length
+  double flat_probability = 0.25;  // share of feelers that continue their parent flat (theta3 = 0), when
+                                   // Manufacturing::flat_extensions allows it (right-angle mode)
   double bounds_margin = 0.05;  // m, the volume bound is the problem's bounding box grown by this
   double far_edge_probability = 0.5;   // a grown chain continues on the far edge, else on a side (half each)
   double empty_probability = 0.15;     // a jump grows no tab at all (the reverse of growing on a bare edge)

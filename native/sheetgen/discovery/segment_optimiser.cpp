@@ -43,7 +43,7 @@ std::vector<Var> contraction_vars(const SegmentWork& w) {
   const int last = w.flange - 1;
   for (int i = w.first; i <= last; ++i) {
     if (i < last) v.push_back({i, 0});
-    v.push_back({i, 1});
+    if (!is_flat_extension(w.part.tabs[i].params)) v.push_back({i, 1});  // a flat extension stays flat
   }
   return v;
 }
@@ -156,6 +156,7 @@ ShortcutResult shortcut_segment(SegmentWork& work, const Environment& env, const
     bends.push_back(a);
     bends.push_back(-a);
   }
+  if (m.flat_extensions) bends.push_back(0.0);
   std::vector<double> skews;
   const int ns = std::max(1, o.skew_samples);
   for (int k = 0; k < ns; ++k) skews.push_back(ns == 1 ? 0.0 : -0.5 * m.max_skew + m.max_skew * k / (ns - 1));
@@ -270,7 +271,10 @@ Part remove_tab_reparent(const Part& part, int j) {
 }
 
 int merge_coplanar(SegmentWork& work, const Environment& env, const SheetSpec& spec, const MergeOptions& o) {
-  const double max_angle = o.max_angle >= 0 ? o.max_angle : 1.5 * spec.manufacturing.min_bend_angle;
+  // 1.5 x the smallest bend, but never a real bend: in right-angle mode (min 89.5 deg) only
+  // flat extensions merge.
+  const double max_angle =
+      o.max_angle >= 0 ? o.max_angle : std::min(1.5 * spec.manufacturing.min_bend_angle, 10.0 * M_PI / 180.0);
   int merges = 0;
   for (int j = work.first + 1; j < work.flange; ++j) {
     const Tab& tj = work.part.tabs[j];

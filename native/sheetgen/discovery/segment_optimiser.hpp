@@ -74,7 +74,7 @@ ShortcutResult shortcut_segment(SegmentWork& work, const Environment& env, const
                                 const ShortcutOptions& options = {});
 
 struct MergeOptions {
-  double max_angle = -1;  // rad, merge a child bent by at most this; < 0 = 1.5 * min_bend_angle
+  double max_angle = -1;  // rad, merge a child bent by at most this; < 0 = min(1.5 * min_bend_angle, 10 deg)
   double max_length_growth = 0.05;  // accept a merge that lengthens the segment by at most 5 %
 };
 // Merges consecutive tabs whose bend is nearly flat into one tab (one bend

@@ -107,10 +107,11 @@ BendSequenceResult check_bend_order(const Part& part, const std::vector<int>& or
                                     const BendSequenceOptions& o) {
   const int n = part.size();
   std::vector<char> seen(n, 0);
-  if (static_cast<int>(order.size()) != std::max(0, n - 1))
-    throw std::invalid_argument("check_bend_order: the order must list every non-base tab once");
+  if (static_cast<int>(order.size()) != part.bend_count())
+    throw std::invalid_argument("check_bend_order: the order must list every bent tab once");
   for (int k : order) {
-    if (k <= 0 || k >= n || seen[k]) throw std::invalid_argument("check_bend_order: bad or repeated tab " + std::to_string(k));
+    if (k <= 0 || k >= n || seen[k] || is_flat_extension(part.tabs[k].params))
+      throw std::invalid_argument("check_bend_order: bad or repeated tab " + std::to_string(k));
     seen[k] = 1;
   }
   BendSequenceResult r;
@@ -147,7 +148,8 @@ BendSequenceResult plan_bend_sequence(const Part& part, const SheetSpec& spec, c
     return r;
   }
   std::vector<int> candidates;
-  for (int i = 1; i < n; ++i) candidates.push_back(i);
+  for (int i = 1; i < n; ++i)
+    if (!is_flat_extension(part.tabs[i].params)) candidates.push_back(i);  // a flat extension is not bent
   std::stable_sort(candidates.begin(), candidates.end(), [&](int a, int b) { return part.depth(a) < part.depth(b); });
   std::string mask(n, '0');
   std::unordered_set<std::string> dead;
@@ -155,7 +157,7 @@ BendSequenceResult plan_bend_sequence(const Part& part, const SheetSpec& spec, c
   BendCollision deepest;
   int deepest_level = -1;
   std::function<bool()> dfs = [&]() -> bool {
-    if (static_cast<int>(order.size()) == n - 1) return true;
+    if (order.size() == candidates.size()) return true;
     if (dead.count(mask)) return false;
     for (int k : candidates) {
       if (mask[k] == '1') continue;

@@ -28,14 +28,14 @@ struct BendCollision {
 struct BendSequenceResult {
   ValidityReason status = ValidityReason::Ok;  // Ok or NoBendSequence
   std::string message;
-  std::vector<int> order;     // tab indices in bending order (all non-base tabs when ok)
+  std::vector<int> order;     // tab indices in bending order (every bent tab when ok; flat extensions are not bent)
   BendCollision collision;    // when not ok: the collision of the checked order / the deepest failure of the search
   int sweeps = 0;             // bend sweeps simulated
   bool exhausted = false;     // plan_bend_sequence stopped at max_sweeps
   bool ok() const { return status == ValidityReason::Ok; }
 };
 
-// Simulates one order (a permutation of the non-base tab indices).
+// Simulates one order (a permutation of the bent tabs' indices).
 // Throws std::invalid_argument when `order` is not such a permutation.
 BendSequenceResult check_bend_order(const Part& part, const std::vector<int>& order, const SheetSpec& spec,
                                     const BendSequenceOptions& options = {});

@@ -71,7 +71,8 @@ std::vector<int> bend_numbers(const FlatPattern& flat, const std::vector<int>& o
   const int n = static_cast<int>(flat.pieces.size());
   std::vector<int> num(n, 0);
   if (order.empty()) {
-    for (int i = 1; i < n; ++i) num[i] = i;
+    int k = 0;
+    for (const FlatBend& b : flat.bends) num[b.tab] = ++k;  // flat extensions have no bend and no number
   } else {
     for (size_t k = 0; k < order.size(); ++k)
       if (order[k] > 0 && order[k] < n) num[order[k]] = static_cast<int>(k) + 1;
@@ -258,10 +259,12 @@ std::string bend_table_csv(const FlatPattern& flat, const std::vector<int>& orde
     for (const FlatBend& b : flat.bends) seq.push_back(b.tab);
   std::ostringstream s;
   s << "order,angle_deg,direction,inside_radius_mm,length_mm,tab\n";
+  std::vector<const FlatBend*> bend_of(flat.pieces.size(), nullptr);
+  for (const FlatBend& b : flat.bends) bend_of[b.tab] = &b;
   int k = 0;
   for (int t : seq) {
-    if (t <= 0 || t > static_cast<int>(flat.bends.size())) continue;
-    const FlatBend& b = flat.bends[t - 1];
+    if (t <= 0 || t >= static_cast<int>(bend_of.size()) || !bend_of[t]) continue;
+    const FlatBend& b = *bend_of[t];
     s << ++k << "," << f6(deg(std::abs(b.angle))) << "," << (b.direction == BendDirection::Up ? "UP" : "DOWN") << ","
       << f6(1e3 * b.inside_radius) << "," << f6(1e3 * b.length) << "," << t << "\n";
   }

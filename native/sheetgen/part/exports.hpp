@@ -13,12 +13,13 @@
 namespace sheetgen {
 
 struct DrawingOptions {
-  std::vector<int> bend_order;  // tab indices in bending order; empty = tab order. Numbers the bends 1..n
+  std::vector<int> bend_order;  // bent tabs in bending order; empty = tab order. Numbers the bends 1..n
   double text_height = 3e-3;    // m, annotation text height
   double dash = 6e-3, gap = 3e-3;  // m, DASHED linetype pattern
 };
 
-// Bend number (1-based) of every non-base tab under `bend_order` (index = tab; 0 for the base).
+// Bend number (1-based) of every bent tab under `bend_order` (index = tab; 0 for the base
+// and for flat extensions, which have no bend).
 std::vector<int> bend_numbers(const FlatPattern& flat, const std::vector<int>& bend_order);
 
 // DXF R12 ($ACADVER AC1009), $INSUNITS 4 (mm). Layers: CUT (outline, a closed

@@ -38,6 +38,7 @@ struct Junction {
   double edge_length = 0;    // m
   Vec2 S = Vec2::Zero(), E = Vec2::UnitX(), V = Vec2::UnitY();  // edge start, direction, outward
   double depth = 0;          // relief depth, m
+  bool flat = false;         // a flat extension: no bend, so no relief of its own
   // Relief decisions.
   bool start_relief = false, end_relief = false, merged_with_next = false;
 };
@@ -84,6 +85,7 @@ FlatPattern unfold(const Part& part, const SheetSpec& spec, const FlatPatternOpt
     FlatPiece& pc = fp.pieces[i];
     const double dL = ro.shifts[i];
     pc.tab = i;
+    pc.parent = tab.parent;
     pc.shift = dL;
     pc.x_axis = dir2(ft.x_axis);
     pc.y_axis = dir2(ft.y_axis);
@@ -96,23 +98,25 @@ FlatPattern unfold(const Part& part, const SheetSpec& spec, const FlatPatternOpt
       fail(ValidityReason::BendZonesOverlap, i,
            "tab " + std::to_string(i) + " is too short for its bend: the flat pattern shortens it by " + mm(-dL));
 
-    FlatBend bd;
-    bd.tab = i;
-    bd.parent = tab.parent;
-    bd.angle = p.theta3;
-    bd.direction = p.theta3 >= 0 ? BendDirection::Up : BendDirection::Down;
-    bd.length = p.w;
-    bd.inside_radius = spec.manufacturing.bend_radius;
-    bd.allowance = bend_allowance(p.theta3, spec);
-    bd.setback = bend_setback(p.theta3, spec);
-    bd.length_change = dL;
-    bd.centre_offset = 0.5 * bd.allowance - bd.setback;
-    bd.root_a = J0;
-    bd.root_b = J1;
-    bd.outward = pc.y_axis;
-    bd.a = J0 + bd.centre_offset * pc.y_axis;
-    bd.b = J1 + bd.centre_offset * pc.y_axis;
-    fp.bends.push_back(bd);
+    if (!is_flat_extension(p)) {
+      FlatBend bd;
+      bd.tab = i;
+      bd.parent = tab.parent;
+      bd.angle = p.theta3;
+      bd.direction = p.theta3 >= 0 ? BendDirection::Up : BendDirection::Down;
+      bd.length = p.w;
+      bd.inside_radius = spec.manufacturing.bend_radius;
+      bd.allowance = bend_allowance(p.theta3, spec);
+      bd.setback = bend_setback(p.theta3, spec);
+      bd.length_change = dL;
+      bd.centre_offset = 0.5 * bd.allowance - bd.setback;
+      bd.root_a = J0;
+      bd.root_b = J1;
+      bd.outward = pc.y_axis;
+      bd.a = J0 + bd.centre_offset * pc.y_axis;
+      bd.b = J1 + bd.centre_offset * pc.y_axis;
+      fp.bends.push_back(bd);
+    }
 
     // Position on the parent's flat edge.
     const std::vector<Vec2>& Q = fp.pieces[tab.parent].polygon;
@@ -127,7 +131,8 @@ FlatPattern unfold(const Part& part, const SheetSpec& spec, const FlatPatternOpt
     j.V = pc.y_axis;
     j.a0 = (J0 - j.S).dot(j.E);
     j.a1 = (J1 - j.S).dot(j.E);
-    j.depth = bend_zone_depth(p.theta3, spec);
+    j.flat = is_flat_extension(p);
+    j.depth = j.flat ? 0.0 : bend_zone_depth(p.theta3, spec);
     if (j.a0 < -ct || j.a1 > j.edge_length + ct)
       fail(ValidityReason::FlatJunctionOutsideEdge, i,
            "tab " + std::to_string(i) + " flat root [" + mm(j.a0) + ", " + mm(j.a1) + "] leaves the flat edge " +
@@ -150,7 +155,7 @@ FlatPattern unfold(const Part& part, const SheetSpec& spec, const FlatPatternOpt
         const Junction* prev = k > 0 ? &junction[list[k - 1]] : nullptr;
         const Junction* next = k + 1 < list.size() ? &junction[list[k + 1]] : nullptr;
         const bool prev_merged = prev && prev->merged_with_next;
-        if (j.a0 > ct && !prev_merged) {
+        if (j.a0 > ct && !prev_merged && !j.flat) {
           j.start_relief = true;
           const double room = prev ? j.a0 - prev->a1 - wr : j.a0;
           if (room < wr - ct)
@@ -158,7 +163,7 @@ FlatPattern unfold(const Part& part, const SheetSpec& spec, const FlatPatternOpt
                  "tab " + std::to_string(list[k]) + " bend ends " + mm(j.a0) + " from the start of its parent edge: a relief needs " +
                      mm(wr) + " (or end the bend at the corner)");
         }
-        if (j.a1 < j.edge_length - ct) {
+        if (j.a1 < j.edge_length - ct && !j.flat) {
           if (next && next->a0 - j.a1 < 2.0 * wr + kerf) {
             j.merged_with_next = true;
             const double gap = next->a0 - j.a1;
@@ -307,13 +312,21 @@ std::vector<std::vector<Vec3>> fold_flat_pattern(const FlatPattern& flat) {
   R[0].col(2) = flat.frame.normal();
   T[0] = flat.frame.origin;
   auto apply = [&](int i, const Vec2& q) { return Vec3(R[i] * Vec3(q.x(), q.y(), 0) + T[i]); };
-  for (const FlatBend& b : flat.bends) {
-    const int i = b.tab, p = b.parent;
-    const Vec2 E = (b.b - b.a).normalized();
+  std::vector<const FlatBend*> bend_of(n, nullptr);
+  for (const FlatBend& b : flat.bends) bend_of[b.tab] = &b;
+  for (int i = 1; i < n; ++i) {  // parents come first
+    const int p = flat.pieces[i].parent;
+    const FlatBend* b = bend_of[i];
+    if (!b) {  // a flat extension lies in its parent's plane
+      R[i] = R[p];
+      T[i] = T[p];
+      continue;
+    }
+    const Vec2 E = (b->b - b->a).normalized();
     const Vec3 e3 = R[p] * Vec3(E.x(), E.y(), 0);
-    const Vec3 X0 = apply(p, b.a - b.centre_offset * b.outward);  // on the sharp fold line
-    const Eigen::Matrix3d rot = Eigen::AngleAxisd(b.angle, -e3).toRotationMatrix();
-    const Vec2 unshift = -b.length_change * b.outward;
+    const Vec3 X0 = apply(p, b->a - b->centre_offset * b->outward);  // on the sharp fold line
+    const Eigen::Matrix3d rot = Eigen::AngleAxisd(b->angle, -e3).toRotationMatrix();
+    const Vec2 unshift = -b->length_change * b->outward;
     // q -> rot * (R_p (q + unshift) + T_p - X0) + X0
     R[i] = rot * R[p];
     T[i] = rot * (R[p] * Vec3(unshift.x(), unshift.y(), 0) + T[p] - X0) + X0;

@@ -40,6 +40,7 @@ struct FlatRelief {
 
 struct FlatPiece {
   int tab = -1;
+  int parent = -1;            // the parent tab (-1 for the base)
   std::vector<Vec2> polygon;  // the tab's own flat region, counter-clockwise, m (tab: [J1, J0, F0', F1'])
   std::vector<Vec2> sharp;    // the tab's mid-surface polygon laid flat and shifted by dL, untrimmed ([P1', P0', F0', F1'])
   // Rigid map of the tab's local frame into the flat: q = origin + x * x_axis + (y + dL) * y_axis.
@@ -60,7 +61,7 @@ struct FlatPattern {
   std::vector<Vec2> outline;             // the one cut contour, counter-clockwise, m; relief notches included
   std::vector<int> outline_tab;          // per outline edge i (outline[i] -> outline[i+1]): tab whose boundary it is
   std::vector<FlatPiece> pieces;         // per tab, same indices as Part::tabs
-  std::vector<FlatBend> bends;           // one per non-base tab, in tab order (bends[k].tab == k + 1)
+  std::vector<FlatBend> bends;           // one per bent tab, in tab order (flat extensions have none)
   std::vector<FlatRelief> reliefs;
   bool ok() const { return status == ValidityReason::Ok; }
   double area() const;                   // m^2, of the outline

@@ -29,6 +29,12 @@ std::vector<int> Part::children(int i) const {
   return out;
 }
 
+int Part::bend_count() const {
+  int n = 0;
+  for (int i = 1; i < size(); ++i) n += is_flat_extension(tabs[i].params) ? 0 : 1;
+  return n;
+}
+
 int Part::depth(int i) const {
   int d = 0;
   while (i > 0 && i < size() && d <= size()) {  // bounded even for a hand-edited cyclic tree

@@ -33,6 +33,11 @@ struct TabParameters {
   double theta3 = 0;  // rad, bend out of the parent plane; + folds towards the parent's top normal ("up")
 };
 
+// theta3 = 0: the tab continues its parent's plane and is not bent (a flat
+// extension, Manufacturing::flat_extensions). It has no bend line, no bend
+// zone and no relief, and is not counted as a bend.
+inline bool is_flat_extension(const TabParameters& p) { return p.theta3 == 0.0; }
+
 struct Tab {
   int parent = -1;        // index into Part::tabs; -1 only for tabs[0] (the base)
   int parent_edge = -1;   // edge of the parent polygon (base: 0..n-1; tab: kStartSideEdge, kFarEdge, kEndSideEdge)
@@ -70,7 +75,7 @@ struct Part {
   bool is_free_edge(int i, int edge) const { return i == 0 ? (edge >= 0 && edge < edge_count(0)) : (edge >= 1 && edge <= 3); }
   std::vector<int> children(int i) const;  // in index order
   int depth(int i) const;                  // base 0, its children 1, ...
-  int bend_count() const { return size() > 0 ? size() - 1 : 0; }
+  int bend_count() const;                  // non-base tabs that are bent (flat extensions are not)
 };
 
 // Part with only a base tab: the load's bottom face moved t/2 down along the

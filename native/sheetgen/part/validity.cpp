@@ -109,7 +109,11 @@ bool tab_limits(const Part& part, const RealisedPart& rp, const SheetSpec& spec,
                who + " length " + mm(p.l) + " is above the maximum tab length " + mm(mf.max_tab_length)))
     return true;
   const double a3 = std::abs(p.theta3);
-  if (a3 < mf.min_bend_angle - at &&
+  if (is_flat_extension(p) && !mf.flat_extensions &&
+      sink.add(ValidityReason::BendAngleTooSmall, i, -1, p.theta3,
+               who + " is a flat extension (bend 0 deg), which these manufacturing settings do not allow"))
+    return true;
+  if (!is_flat_extension(p) && a3 < mf.min_bend_angle - at &&
       sink.add(ValidityReason::BendAngleTooSmall, i, -1, p.theta3,
                who + " bend " + deg(p.theta3) + " is below the minimum bend angle " + deg(mf.min_bend_angle)))
     return true;
