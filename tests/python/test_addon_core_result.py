@@ -55,6 +55,17 @@ class BentMesh(unittest.TestCase):
         self.assertEqual(m.bend_edges, [(4, 5, 1)])               # the child's corners 0-1, bend number 1
         self.assertAlmostEqual(m.area(), 0.1 * 0.1 + 0.08 * 0.05, places=12)
 
+    def test_flat_extension_has_no_bend_edge(self):
+        # A third tab continuing the child flat (theta3 = 0) is welded on but is no bend.
+        part = bracket()
+        part["tabs"][1]["parameters"] = {"theta3": -math.pi / 2}
+        part["tabs"].append({"index": 2, "parent": 1, "parent_edge": 2, "parameters": {"theta3": 0.0},
+                             "corners": [[0.1, 0.01, 0.15], [0.1, 0.09, 0.15], [0.1, 0.09, 0.12], [0.1, 0.01, 0.12]]})
+        m = R.bent_mesh(part)
+        self.assertEqual(m.bend_edges, [(4, 5, 1)])
+        self.assertEqual(len(m.vertices), 10)                     # the extension shares the child's far corners
+        self.assertAlmostEqual(m.area(), 0.1 * 0.1 + 0.08 * 0.05 + 0.08 * 0.03, places=12)
+
     def test_coincident_corners_are_one_vertex(self):
         part = bracket()
         part["tabs"][1]["corners"][0] = [0.1 + 4e-7, 0.1, 0.2]   # within WELD_TOL of the base corner 2

@@ -95,7 +95,8 @@ def bent_mesh(part):
         idx = [w.index(c) for c in corners]
         for i in range(1, len(idx) - 1):
             m.faces.append([idx[0], idx[i], idx[i + 1]])
-        if tab.get("parent", -1) >= 0:
+        flat = ((tab.get("parameters") or {}).get("theta3") == 0)  # a flat extension: no bend at its root
+        if tab.get("parent", -1) >= 0 and not flat:
             m.bend_edges.append((idx[0], idx[1], bend_number.get(tab.get("index", k), 0)))
     m.vertices = w.vertices
     return m
