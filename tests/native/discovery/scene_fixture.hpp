@@ -2,21 +2,11 @@
 // Small scenes assembled in code for the discovery unit tests.
 #include "sheetgen/core/problem.hpp"
 
+#include "../common/sheet_fixture.hpp"
+
 namespace sheetgen::testing_scenes {
 
-inline Manufacturing manufacturing() {
-  Manufacturing m;  // DESIGN.md defaults for t = 1.6 mm
-  m.bend_radius = 6.4e-3;
-  m.k_factor = 0.45;
-  m.kerf = 0.2e-3;
-  m.min_flange = 12.8e-3;
-  m.min_tab_width = 16e-3;
-  m.min_tab_length = 16e-3;
-  m.rivet_diameter = 3.96875e-3;
-  m.rivet_edge_distance = 2 * m.rivet_diameter;
-  m.rivet_pitch = 6 * m.rivet_diameter;
-  return m;
-}
+inline Manufacturing manufacturing() { return fixtures::aluminium_manufacturing_1_6mm(); }  // DESIGN.md defaults for t = 1.6 mm
 
 // Rectangle from corner o spanned by u and v (normal u x v), two triangles.
 inline TriangleMesh quad(const Vec3& o, const Vec3& u, const Vec3& v) {

@@ -5,28 +5,14 @@
 #include <cmath>
 
 #include "sheetgen/part/bend_sequence.hpp"
+#include "../common/sheet_fixture.hpp"
 
 namespace sheetgen {
 namespace {
 
 const double kDeg = M_PI / 180.0;
 
-SheetSpec spec() {
-  SheetSpec s;
-  s.thickness = 1.6e-3;
-  s.clearance = 1e-3;
-  Manufacturing& m = s.manufacturing;
-  m.bend_radius = 6.4e-3;
-  m.k_factor = 0.45;
-  m.kerf = 0.2e-3;
-  m.min_flange = 12.8e-3;
-  m.min_tab_width = 16e-3;
-  m.min_tab_length = 16e-3;
-  m.rivet_diameter = 3.96875e-3;
-  m.rivet_edge_distance = 2 * m.rivet_diameter;
-  m.rivet_pitch = 6 * m.rivet_diameter;
-  return s;
-}
+SheetSpec spec() { return fixtures::aluminium_sheet_1_6mm(); }
 
 // Cross-section in the y-z plane (all tabs 30 mm wide in x):
 //   base y 0..40 at z 0; W (tab 4) stands on y = 40 up to z = 30;

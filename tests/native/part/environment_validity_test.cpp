@@ -7,6 +7,7 @@
 #include "sheetgen/env/environment.hpp"
 #include "sheetgen/part/rivet_flange.hpp"
 #include "sheetgen/part/validity.hpp"
+#include "../common/sheet_fixture.hpp"
 
 namespace sheetgen {
 namespace {
@@ -14,19 +15,7 @@ namespace {
 const double kDeg = M_PI / 180.0;
 constexpr double kT = 1.6e-3;
 
-Manufacturing manufacturing() {
-  Manufacturing m;
-  m.bend_radius = 6.4e-3;
-  m.k_factor = 0.45;
-  m.kerf = 0.2e-3;
-  m.min_flange = 12.8e-3;
-  m.min_tab_width = 16e-3;
-  m.min_tab_length = 16e-3;
-  m.rivet_diameter = 3.96875e-3;  // 2t rounded up to 1/32 in
-  m.rivet_edge_distance = 2 * m.rivet_diameter;
-  m.rivet_pitch = 6 * m.rivet_diameter;
-  return m;
-}
+Manufacturing manufacturing() { return fixtures::aluminium_manufacturing_1_6mm(); }
 
 // Horizontal rectangle at height z, normal +z, two triangles.
 TriangleMesh rectangle(double x0, double x1, double y0, double y1, double z) {

@@ -11,28 +11,14 @@
 
 #include "sheetgen/part/bend_sequence.hpp"
 #include "sheetgen/part/exports.hpp"
+#include "../common/sheet_fixture.hpp"
 
 namespace sheetgen {
 namespace {
 
 const double kDeg = M_PI / 180.0;
 
-SheetSpec spec() {
-  SheetSpec s;
-  s.thickness = 1.6e-3;
-  s.clearance = 1e-3;
-  Manufacturing& m = s.manufacturing;
-  m.bend_radius = 6.4e-3;
-  m.k_factor = 0.45;
-  m.kerf = 0.2e-3;
-  m.min_flange = 12.8e-3;
-  m.min_tab_width = 16e-3;
-  m.min_tab_length = 16e-3;
-  m.rivet_diameter = 3.96875e-3;
-  m.rivet_edge_distance = 2 * m.rivet_diameter;
-  m.rivet_pitch = 6 * m.rivet_diameter;
-  return s;
-}
+SheetSpec spec() { return fixtures::aluminium_sheet_1_6mm(); }
 
 // Base 60 x 60 mm; A up 90 on edge 0 with D down 90 on A's far edge; B down 45
 // on edge 2; C up 120 on edge 1. Four bends: UP 90, DOWN 90, DOWN 45, UP 120.

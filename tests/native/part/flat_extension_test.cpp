@@ -11,28 +11,16 @@
 #include "sheetgen/part/exports.hpp"
 #include "sheetgen/part/flat_pattern.hpp"
 #include "sheetgen/part/polygon_geometry.hpp"
+#include "../common/sheet_fixture.hpp"
 
 namespace sheetgen {
 namespace {
 
 const double kDeg = M_PI / 180.0;
 
-// Al 2024-T3, t = 1.6 mm, DESIGN.md's defaults (as in flat_pattern_test.cpp).
 SheetSpec spec(bool flat_extensions) {
-  SheetSpec s;
-  s.thickness = 1.6e-3;
-  s.clearance = 1e-3;
-  Manufacturing& m = s.manufacturing;
-  m.bend_radius = 6.4e-3;
-  m.k_factor = 0.45;
-  m.kerf = 0.2e-3;
-  m.min_flange = 12.8e-3;
-  m.min_tab_width = 16e-3;
-  m.min_tab_length = 16e-3;
-  m.rivet_diameter = 3.96875e-3;
-  m.rivet_edge_distance = 2 * m.rivet_diameter;
-  m.rivet_pitch = 6 * m.rivet_diameter;
-  m.flat_extensions = flat_extensions;
+  SheetSpec s = fixtures::aluminium_sheet_1_6mm();
+  s.manufacturing.flat_extensions = flat_extensions;
   return s;
 }
 

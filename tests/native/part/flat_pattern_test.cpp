@@ -7,29 +7,14 @@
 
 #include "sheetgen/part/flat_pattern.hpp"
 #include "sheetgen/part/polygon_geometry.hpp"
+#include "../common/sheet_fixture.hpp"
 
 namespace sheetgen {
 namespace {
 
 const double kDeg = M_PI / 180.0;
 
-// Al 2024-T3, t = 1.6 mm, with DESIGN.md's defaults filled in.
-SheetSpec spec() {
-  SheetSpec s;
-  s.thickness = 1.6e-3;
-  s.clearance = 1e-3;
-  Manufacturing& m = s.manufacturing;
-  m.bend_radius = 6.4e-3;  // 4 t
-  m.k_factor = 0.45;
-  m.kerf = 0.2e-3;
-  m.min_flange = 12.8e-3;      // 4 t + R
-  m.min_tab_width = 16e-3;     // 10 t
-  m.min_tab_length = 16e-3;    // 2 R + 2 t
-  m.rivet_diameter = 3.96875e-3;
-  m.rivet_edge_distance = 2 * m.rivet_diameter;
-  m.rivet_pitch = 6 * m.rivet_diameter;
-  return s;
-}
+SheetSpec spec() { return fixtures::aluminium_sheet_1_6mm(); }
 
 Part square_base(double size = 0.04) {
   return make_base_part({Vec3(0, 0, 0), Vec3(size, 0, 0), Vec3(size, size, 0), Vec3(0, size, 0)}, Vec3::UnitZ());

@@ -7,25 +7,14 @@
 #include <fstream>
 
 #include "sheetgen/part/manufacturing_plan.hpp"
+#include "../common/sheet_fixture.hpp"
 
 namespace sheetgen {
 namespace {
 
 const double kDeg = M_PI / 180.0;
 
-SheetSpec spec() {
-  SheetSpec s;
-  s.thickness = 1.6e-3;
-  Manufacturing& m = s.manufacturing;
-  m.bend_radius = 6.4e-3;
-  m.min_flange = 12.8e-3;
-  m.min_tab_width = 16e-3;
-  m.min_tab_length = 16e-3;
-  m.rivet_diameter = 3.96875e-3;
-  m.rivet_edge_distance = 2 * m.rivet_diameter;
-  m.rivet_pitch = 6 * m.rivet_diameter;
-  return s;
-}
+SheetSpec spec() { return fixtures::aluminium_sheet_1_6mm(); }
 
 Part square(double size) {
   return make_base_part({Vec3(0, 0, 0), Vec3(size, 0, 0), Vec3(size, size, 0), Vec3(0, size, 0)}, Vec3::UnitZ());
