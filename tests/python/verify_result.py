@@ -16,6 +16,10 @@ the code that made them (issue 6 acceptance):
   "Riveted multi-leg parts") the measured gaps are -0.3 .. -4.3 %; what is
   left is the transverse shear a Kirchhoff plate leaves out next to the rivet
   footprints (ours is the stiffer one), largest on one-rivet flanges;
+* the margin of safety re-computed from CalculiX's stresses on the same deck
+  (`ccx_max_von_mises`: surface von Mises per element, by the stress rule of
+  docs/fem.md applied to CalculiX's own mesh): CalculiX's maximum may exceed
+  the stress at which MS equals the requirement by at most STRESS_TOLERANCE;
 * the DXF's CUT outline, read by ezdxf, is one simple closed polygon (shapely)
   whose area equals the flat-pattern area in result.json.
 
@@ -37,6 +41,7 @@ from shapely.geometry import Polygon
 
 
 CCX_TOLERANCE = 0.05  # see the module docstring
+STRESS_TOLERANCE = 0.05  # CalculiX's maximum stress may exceed the allowed one by this share
 
 
 def read_obj(path):
@@ -136,6 +141,122 @@ def distance_to_segment(P, a, b):
     return np.linalg.norm(P - (a + t[:, None] * ab), axis=1)
 
 
+def _deck_section(text, keyword):
+    """The data lines after the first line starting with `keyword` up to the next keyword line."""
+    start = text.index(keyword)
+    body = text[text.index("\n", start) + 1:]
+    end = body.find("\n*")
+    return body if end < 0 else body[:end + 1]
+
+
+def _quad_reentrant_corners(quads, X, min_angle):
+    """Boundary nodes of a quad mesh whose corner angles add up to more than min_angle (rad)."""
+    angle_sum = np.zeros(len(X))
+    for k in range(4):
+        a, b, c = quads[:, k], quads[:, (k + 1) % 4], quads[:, (k + 3) % 4]
+        u, v = X[b] - X[a], X[c] - X[a]
+        ang = np.arctan2(np.linalg.norm(np.cross(u, v), axis=1), np.einsum("ij,ij->i", u, v))
+        np.add.at(angle_sum, a, ang)
+    edges = np.sort(np.concatenate([quads[:, [k, (k + 1) % 4]] for k in range(4)]), axis=1)
+    uniq, uses = np.unique(edges, axis=0, return_counts=True)
+    on_boundary = np.zeros(len(X), bool)
+    on_boundary[uniq[uses == 1].ravel()] = True
+    return np.nonzero(on_boundary & (angle_sum > min_angle))[0]
+
+
+def ccx_max_von_mises(deck, dat, t):
+    """The largest surface von Mises stress (Pa) CalculiX finds away from the singular points.
+
+    CalculiX expands each S4 shell into a brick with 2 x 2 x 2 integration points
+    (1-4 on one side of the mid-surface, 5-8 on the other, at +-t/(2 sqrt 3)).
+    Per element, each layer's points are averaged (the element centre), the
+    in-plane part kept (P = I - n n^T; a surface carries no transverse shear or
+    normal stress) and extrapolated linearly to the two surfaces. The rule is
+    the one docs/fem.md states, applied to CalculiX's own mesh: elements whose
+    centre is within 2 t + h_p of a clamped node, a rigid-body node or a
+    re-entrant corner of the outline (corner angles > 190 deg) are left out.
+    h_p is the longest triangle edge at p, as in sheetgen's rule: the deck
+    splits every triangle at its edge midpoints into three quads, so it is
+    twice the longest quad edge at p. Returns (sigma_max, number of singular
+    points, number of re-entrant corners).
+    """
+    ids, X = [], []
+    for line in _deck_section(deck, "*NODE").splitlines():
+        p = line.split(",")
+        if len(p) == 4:
+            ids.append(int(p[0]))
+            X.append([float(v) for v in p[1:]])
+    index = {n: i for i, n in enumerate(ids)}
+    X = np.array(X)
+    elem_ids, quads = [], []
+    for line in _deck_section(deck, "*ELEMENT").splitlines():
+        p = line.split(",")
+        if len(p) == 5:
+            elem_ids.append(int(p[0]))
+            quads.append([index[int(v)] for v in p[1:]])
+    quads = np.array(quads)
+    singular = set()
+    for line in _deck_section(deck, "*BOUNDARY").splitlines():
+        if line.strip():
+            singular.add(index[int(line.split(",")[0])])
+    for m in re.finditer(r"^\*NSET, NSET=(RIGID\d+)\s*$", deck, re.M):
+        body = deck[m.end():].split("\n*")[0]
+        singular.update(index[int(v)] for v in re.findall(r"\d+", body))
+    corners = _quad_reentrant_corners(quads, X, math.radians(190.0))
+    singular.update(corners.tolist())
+    # Longest incident edge per node; points that carry no element do not count.
+    size = np.zeros(len(X))
+    for k in range(4):
+        a, b = quads[:, k], quads[:, (k + 1) % 4]
+        L = np.linalg.norm(X[b] - X[a], axis=1)
+        np.maximum.at(size, a, L)
+        np.maximum.at(size, b, L)
+    pts = np.array(sorted(i for i in singular if size[i] > 0), dtype=int)
+
+    # Stresses at the integration points, by element.
+    block = dat.split("stresses (elem, integ.pnt.")[-1]
+    S = {}
+    for line in block.splitlines()[1:]:
+        p = line.split()
+        if len(p) >= 8 and p[0].isdigit():
+            S.setdefault(int(p[0]), [None] * 8)[int(p[1]) - 1] = [float(v) for v in p[2:8]]
+    sig = np.array([S[e] for e in elem_ids])  # E x 8 x 6 (xx, yy, zz, xy, xz, yz)
+
+    def tensor(v):
+        T = np.empty(v.shape[:-1] + (3, 3))
+        T[..., 0, 0], T[..., 1, 1], T[..., 2, 2] = v[..., 0], v[..., 1], v[..., 2]
+        T[..., 0, 1] = T[..., 1, 0] = v[..., 3]
+        T[..., 0, 2] = T[..., 2, 0] = v[..., 4]
+        T[..., 1, 2] = T[..., 2, 1] = v[..., 5]
+        return T
+
+    lower, upper = tensor(sig[:, :4].mean(axis=1)), tensor(sig[:, 4:].mean(axis=1))
+    Q = X[quads]
+    n = np.cross(Q[:, 2] - Q[:, 0], Q[:, 3] - Q[:, 1])
+    n /= np.linalg.norm(n, axis=1)[:, None]
+    P = np.eye(3)[None] - n[:, :, None] * n[:, None, :]
+    mid, half = 0.5 * (upper + lower), 0.5 * (upper - lower)
+    vm = np.zeros(len(quads))
+    for side in (1.0, -1.0):
+        T = P @ (mid + side * math.sqrt(3.0) * half) @ P
+        d = T[:, [0, 1, 2], [0, 1, 2]]
+        v = np.sqrt(0.5 * ((d[:, 0] - d[:, 1]) ** 2 + (d[:, 1] - d[:, 2]) ** 2 + (d[:, 2] - d[:, 0]) ** 2)
+                    + 3 * (T[:, 0, 1] ** 2 + T[:, 0, 2] ** 2 + T[:, 1, 2] ** 2))
+        vm = np.maximum(vm, v)
+
+    centre = Q.mean(axis=1)
+    excluded = np.zeros(len(quads), bool)
+    if len(pts):
+        Y, r2 = X[pts], (2 * t + 2 * size[pts]) ** 2
+        step = max(1, int(4e6 // len(pts)))  # a step x #points distance matrix, ~32 MB
+        for k in range(0, len(quads), step):
+            c = centre[k:k + step]
+            d2 = (c * c).sum(axis=1)[:, None] + (Y * Y).sum(axis=1)[None, :] - 2 * c @ Y.T
+            excluded[k:k + step] = (d2 < r2[None, :]).any(axis=1)
+    kept = vm[~excluded] if (~excluded).any() else vm
+    return float(kept.max()), len(pts), len(corners)
+
+
 def check_part(out_dir, prob, meshes, part, args, report, bad):
     t = prob.get("material", {}).get("thickness", 1.6e-3)
     clearance = prob.get("requirements", {}).get("clearance", 1.0e-3)
@@ -212,8 +333,10 @@ def check_part(out_dir, prob, meshes, part, args, report, bad):
             deck = os.path.join(tmp, "part.inp")
             subprocess.run([args.sheetgen, "export-ccx", os.path.join(out_dir, "result.json"), "--load", name, "--out", deck],
                            check=True, stdout=subprocess.DEVNULL)
-            subprocess.run(["ccx", "-i", "part"], cwd=tmp, check=True, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
             text = open(deck).read()
+            # Ask CalculiX for the stresses at its integration points as well.
+            open(deck, "w").write(text.replace("*END STEP", "*EL PRINT, ELSET=EALL\nS\n*END STEP"))
+            subprocess.run(["ccx", "-i", "part"], cwd=tmp, check=True, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
             cloads = [(int(a), int(b), float(c)) for a, b, c in re.findall(r"^\s*(\d+)\s*,\s*(\d+)\s*,\s*([-+0-9.eE]+)\s*$",
                                                                               text.split("*CLOAD")[1].split("*")[0], re.M)]
             ref = int(re.search(r"REF NODE=(\d+)", text).group(1))
@@ -226,6 +349,7 @@ def check_part(out_dir, prob, meshes, part, args, report, bad):
                     disp[int(p[0])] = [float(x) for x in p[1:]]
             C = sum(v * disp[n][d - 1] for n, d, v in cloads)
             deflection = float(np.linalg.norm(disp[ref]))
+            s_ccx, n_singular, n_corners = ccx_max_von_mises(text, dat, t)
         c_ours, d_ours, limit = part["compliance"], part["deflection_m"], part["compliance_limit"]
         report.append(f"{name}: compliance ours {c_ours:.5g} J, CalculiX {C:.5g} J ({(c_ours / C - 1) * 100:+.2f} %); "
                       f"deflection ours {d_ours * 1e3:.4f} mm, CalculiX {deflection * 1e3:.4f} mm; limit {limit:.4g} J")
@@ -233,6 +357,17 @@ def check_part(out_dir, prob, meshes, part, args, report, bad):
             bad.append(f"{name}: compliance differs from CalculiX by {(c_ours / C - 1) * 100:.1f} %")
         if C > (1 + CCX_TOLERANCE) * limit:
             bad.append(f"{name}: CalculiX compliance {C:.4g} J exceeds the limit {limit:.4g} J")
+        # MS from CalculiX's stress: MS = Fty / (SF sigma) - 1, so Fty / SF = (1 + MS) sigma_ours.
+        s_ours, ms_ours = part["max_von_mises_pa"], part["margin_of_safety"]
+        ms_required = prob.get("requirements", {}).get("min_margin_of_safety", 0.0)
+        ms_ccx = (1 + ms_ours) * s_ours / s_ccx - 1
+        report.append(f"{name}: max von Mises ours {s_ours * 1e-6:.2f} MPa, CalculiX {s_ccx * 1e-6:.2f} MPa "
+                      f"({(s_ours / s_ccx - 1) * 100:+.2f} %; {n_singular} singular points, {n_corners} re-entrant "
+                      f"corners); MS ours {ms_ours:.3f}, CalculiX {ms_ccx:.3f}, required {ms_required:.3g}")
+        allowed = (1 + ms_ours) * s_ours / (1 + ms_required)  # Pa, the stress at which MS = required
+        if s_ccx > (1 + STRESS_TOLERANCE) * allowed:
+            bad.append(f"{name}: CalculiX stress {s_ccx * 1e-6:.1f} MPa gives MS {ms_ccx:.3f} below the required "
+                       f"{ms_required:.3g} by more than {STRESS_TOLERANCE * 100:.0f} % of the stress")
 
     # DXF outline.
     doc = ezdxf.readfile(os.path.join(out_dir, name, "flat.dxf"))

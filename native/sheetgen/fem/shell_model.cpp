@@ -243,6 +243,42 @@ std::uint64_t pattern_hash(const SparseMatrix& K) {
   return h;
 }
 
+// Boundary nodes whose incident triangles' angles at the node add up to more
+// than `min_angle` (rad): re-entrant corners of the shell's outline. Where a
+// fold stops inside its parent's edge the parent gives pi and the child about
+// pi/2, so the corner is ~3 pi/2 wide; a flat extension narrower than its
+// parent's edge makes the same notch in one plane. The plate and sharp-fold
+// models are singular there (the stress grows without bound as h -> 0), just
+// as at a clamp. A fold over a whole edge ends at pi/2 + pi/2 = pi and stays
+// in the rule. A boundary node is one on an edge that only one triangle uses.
+std::vector<int> find_reentrant_corners(const ShellModel& m, double min_angle) {
+  const int n_nodes = static_cast<int>(m.nodes.size());
+  std::unordered_map<std::uint64_t, int> edge_uses;
+  edge_uses.reserve(3 * m.triangles.size());
+  auto edge_key = [](int a, int b) {
+    const auto lo = static_cast<std::uint64_t>(std::min(a, b)), hi = static_cast<std::uint64_t>(std::max(a, b));
+    return (lo << 32) | hi;
+  };
+  std::vector<double> angle_sum(n_nodes, 0.0);
+  for (const auto& t : m.triangles)
+    for (int k = 0; k < 3; ++k) {
+      ++edge_uses[edge_key(t[k], t[(k + 1) % 3])];
+      const Vec3 u = m.nodes[t[(k + 1) % 3]] - m.nodes[t[k]];
+      const Vec3 v = m.nodes[t[(k + 2) % 3]] - m.nodes[t[k]];
+      angle_sum[t[k]] += std::atan2(u.cross(v).norm(), u.dot(v));
+    }
+  std::vector<char> on_boundary(n_nodes, 0);
+  for (const auto& [key, uses] : edge_uses)
+    if (uses == 1) {
+      on_boundary[key >> 32] = 1;
+      on_boundary[key & 0xffffffffu] = 1;
+    }
+  std::vector<int> corners;
+  for (int i = 0; i < n_nodes; ++i)
+    if (on_boundary[i] && angle_sum[i] > min_angle) corners.push_back(i);
+  return corners;
+}
+
 // Gives access to the CHOLMOD factor so the pivots can be checked for a
 // mechanism (CHOLMOD only fails on non-positive pivots, not on tiny ones).
 class CholmodLlt : public Eigen::CholmodSupernodalLLT<SparseMatrix, Eigen::Lower> {
@@ -430,13 +466,16 @@ ShellResult ShellSolver::solve(const ShellModel& m, const ShellSolveOptions& opt
       node_size[t[(k + 1) % 3]] = std::max(node_size[t[(k + 1) % 3]], len);
     }
   }
-  // Singular points: supported nodes and rigid-link nodes that carry elements.
+  // Singular points: supported nodes, rigid-link nodes that carry elements, and
+  // re-entrant corners of the boundary.
   std::vector<char> singular(n_nodes, 0);
   for (const NodeSupport& sp : m.supports) singular[sp.node] = 1;
   for (const RigidLink& link : m.rigid_links) {
     singular[link.master] = 1;
     for (int sl : link.slaves) singular[sl] = 1;
   }
+  res.reentrant_corners = find_reentrant_corners(m, options.reentrant_corner_angle);
+  for (int i : res.reentrant_corners) singular[i] = 1;
   std::vector<int> points;
   double rmax = 0;
   const double base_radius = options.stress_exclusion_thicknesses * m.material.thickness;

@@ -11,6 +11,7 @@
 // one-off form.
 #include <Eigen/Core>
 #include <array>
+#include <cmath>
 #include <cstdint>
 #include <functional>
 #include <memory>
@@ -84,10 +85,17 @@ struct ShellSolveOptions {
   double safety_factor = 1.5;  // -, SF in MS = Fty / (SF sigma_max) - 1 (DESIGN.md "Units")
   // Stress rule: an element is left out of the maximum when its centroid is
   // closer than (stress_exclusion_thicknesses * t + h_p) to a singular point p
-  // (a node with a support, or a node of a rigid link), where h_p is the
-  // longest edge of the elements at p. The radius tends to 2 t under
-  // refinement, so the maximum over the rest converges (docs/fem.md).
+  // (a node with a support, a node of a rigid link, or a re-entrant corner of
+  // the outline), where h_p is the longest edge of the elements at p. The
+  // radius tends to 2 t under refinement, so the maximum over the rest
+  // converges (docs/fem.md).
   double stress_exclusion_thicknesses = 2.0;
+  // A boundary node is a re-entrant corner when the angles of its triangles
+  // add up to more than this (rad; 190 deg): the end of a fold inside its
+  // parent's edge (~270 deg) or a notch in one plane. Straight boundaries
+  // (180 deg, with round-off) and the ends of a fold over a whole edge
+  // (90 + 90 deg) are not.
+  double reentrant_corner_angle = 190.0 * M_PI / 180.0;
   // A pivot smaller than this fraction of its diagonal entry means the model
   // is a mechanism (a rigid-body mode no support holds).
   double singular_pivot_ratio = 1e-11;
@@ -101,6 +109,7 @@ struct ShellResult {
   std::vector<double> von_mises_top;     // #E, Pa, centroid, z = +t/2
   std::vector<double> von_mises_bottom;  // #E, Pa, centroid, z = -t/2
   std::vector<bool> stress_excluded;     // #E, true where the stress rule leaves the element out
+  std::vector<int> reentrant_corners;    // boundary nodes the rule treats as singular (re-entrant corners)
   double max_von_mises = 0;              // Pa, max over the elements the rule keeps
   int max_von_mises_element = -1;
   bool stress_rule_fell_back = false;    // every element was excluded; the max is over all of them
