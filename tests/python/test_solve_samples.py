@@ -2,7 +2,7 @@
 """Every sample problem solves at the default settings (10 chains x 1000
 iterations) with status ok, and each part passes the independent checks of
 tests/python/verify_result.py (brute-force clearance, flange on its rivet area,
-CalculiX compliance, ezdxf outline).
+CalculiX compliance and margin of safety, ezdxf outline).
 
 Run: /usr/bin/python3 tests/python/test_solve_samples.py --sheetgen build/native/cli/sheetgen [SCENE ...]
 """
