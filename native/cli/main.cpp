@@ -100,6 +100,7 @@ struct ExportCcxArgs {
   std::string result, load, out;
   double element_size_mm = 0;  // mm; <= 0: default_element_size (docs/fem.md)
   bool solve = false;
+  std::string displacements;  // with --solve: CSV of our displacements by deck node id (m)
 };
 
 int export_ccx(const ExportCcxArgs& a) {
@@ -142,10 +143,11 @@ int export_ccx(const ExportCcxArgs& a) {
   // Write beside the target and rename: a failed run leaves no half-written deck.
   const fs::path out = fs::u8path(out_path);
   const fs::path tmp = out.parent_path() / (out.filename().u8string() + ".tmp");
+  sheetgen::CcxDeckMap map;
   {
     std::ofstream deck(tmp, std::ios::binary);
     if (!deck) throw sheetgen::InputError(out_path, "--out", "cannot be written (" + std::string(std::strerror(errno)) + ")");
-    const auto map = sheetgen::write_ccx_deck(model.model, deck);
+    map = sheetgen::write_ccx_deck(model.model, deck);
     deck.flush();
     if (!deck) {
       std::error_code ec;
@@ -161,6 +163,21 @@ int export_ccx(const ExportCcxArgs& a) {
     std::printf("ours: h = %.4g mm, %zu triangles, %d DOF, compliance %.8g J, deflection %.8g mm\n",
                 model.mesh.element_size * 1e3, model.model.triangles.size(), r.reduced_dofs, r.compliance,
                 r.load_deflection * 1e3);
+    if (!a.displacements.empty()) {
+      // Node by node against CalculiX's .dat: where the two solvers part.
+      std::ofstream csv(fs::u8path(a.displacements), std::ios::binary);
+      if (!csv) throw sheetgen::InputError(a.displacements, "--displacements", "cannot be written");
+      csv << "deck_node,x_m,y_m,z_m,ux_m,uy_m,uz_m\n";
+      char line[256];
+      for (size_t i = 0; i < r.displacements.size() && i < map.node_id.size(); ++i) {
+        if (map.node_id[i] < 0) continue;
+        const auto& x = model.model.nodes[i];
+        const auto& u = r.displacements[i];
+        std::snprintf(line, sizeof line, "%d,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g\n", map.node_id[i], x.x(), x.y(), x.z(), u(0),
+                      u(1), u(2));
+        csv << line;
+      }
+    }
   }
   return 0;
 }
@@ -292,6 +309,8 @@ int main(int argc, char** argv) {
   ccx->add_option("--element-size", ccx_args.element_size_mm, "element size in mm (default: the solver's, docs/fem.md)")
       ->check(CLI::Range(0.05, 1000.0));
   ccx->add_flag("--solve", ccx_args.solve, "also solve the model with sheetgen's FEM and print compliance and deflection");
+  ccx->add_option("--displacements", ccx_args.displacements,
+                  "with --solve: write our displacements by deck node id to this CSV (m), to compare with CalculiX's .dat");
 
   try {
     app.parse(argc, argv);

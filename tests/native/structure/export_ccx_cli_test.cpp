@@ -3,8 +3,11 @@
 #include <gtest/gtest.h>
 #include <sys/wait.h>
 
+#include <array>
+#include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <map>
 #include <nlohmann/json.hpp>
 #include <sstream>
 
@@ -64,7 +67,7 @@ TEST(ExportCcxCli, DeckEqualsTheLibraryModel) {
   // --element-size (mm) meshes at that size, --solve prints our compliance of
   // the same model (refinement studies against CalculiX, docs/fem.md).
   const auto [code3, out3] = run("export-ccx '" + (dir / "result.json").string() + "' --load box --element-size 7 --solve --out '" +
-                                 (dir / "deck7.inp").string() + "'");
+                                 (dir / "deck7.inp").string() + "' --displacements '" + (dir / "u.csv").string() + "'");
   ASSERT_EQ(code3, 0) << out3;
   PartModelOptions seven;
   seven.element_size = 7e-3;
@@ -76,6 +79,37 @@ TEST(ExportCcxCli, DeckEqualsTheLibraryModel) {
   ASSERT_NE(at, std::string::npos) << out3;
   EXPECT_NEAR(std::stod(out3.substr(at + 11)), ours.compliance, 1e-7 * ours.compliance) << out3;  // printed to 8 digits
   EXPECT_NE(out3.find("h = 7 mm"), std::string::npos) << out3;
+  // --displacements: our u by deck node id; the deck's *CLOAD lines dotted
+  // with it give back the compliance f^T u.
+  std::map<int, std::array<double, 3>> u;
+  {
+    std::istringstream csv(slurp(dir / "u.csv"));
+    std::string line;
+    std::getline(csv, line);
+    EXPECT_EQ(line, "deck_node,x_m,y_m,z_m,ux_m,uy_m,uz_m");
+    while (std::getline(csv, line)) {
+      std::array<double, 7> v{};
+      int id = 0;
+      ASSERT_EQ(std::sscanf(line.c_str(), "%d,%lf,%lf,%lf,%lf,%lf,%lf", &id, &v[0], &v[1], &v[2], &v[3], &v[4], &v[5]), 7) << line;
+      u[id] = {v[3], v[4], v[5]};
+    }
+  }
+  const std::string deck7 = slurp(dir / "deck7.inp");
+  std::istringstream cloads(deck7.substr(deck7.find("*CLOAD\n") + 7));
+  double f_dot_u = 0;
+  std::string line;
+  int n_loads = 0;
+  while (std::getline(cloads, line) && !line.empty() && line[0] != '*') {
+    int node = 0, dof = 0;
+    double value = 0;
+    ASSERT_EQ(std::sscanf(line.c_str(), "%d, %d, %lf", &node, &dof, &value), 3) << line;
+    ASSERT_TRUE(dof >= 1 && dof <= 3) << line;  // this load has no moment
+    ASSERT_TRUE(u.count(node)) << "load node " << node << " missing from the CSV";
+    f_dot_u += value * u[node][dof - 1];
+    ++n_loads;
+  }
+  EXPECT_GT(n_loads, 0);
+  EXPECT_NEAR(f_dot_u, ours.compliance, 1e-6 * ours.compliance);
 
   const auto [code2, out2] = run("export-ccx '" + (dir / "result.json").string() + "' --load crate --out '" + (dir / "x.inp").string() + "'");
   EXPECT_EQ(code2, 1);
