@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <numeric>
 
 #include "sheetgen/fem/fem_error.hpp"
@@ -79,14 +80,29 @@ std::vector<std::array<int, 3>> delaunay_triangulation(const std::vector<Vec2>& 
 
   for (int pi : order) {
     const Vec2& q = p[pi];
-    // Walk to the triangle containing q.
+    // Walk to the triangle containing q. The edge tried first rotates with
+    // the step: a walk that always tries edges in the same order can cycle
+    // (it is only guaranteed to end on a Delaunay triangulation with exact
+    // predicates, and ours are floating point; seen on a real part, where
+    // every step had a way on and the walk came back). Should it still not
+    // end, the triangle that holds q best is found by a scan of all of them.
     int t = last;
+    const int max_steps = 4 * static_cast<int>(tris.size()) + 16;
     for (int steps = 0;; ++steps) {
-      if (steps > 4 * static_cast<int>(tris.size()) + 16)
-        throw FemError("mesher", "Delaunay point location did not terminate");
+      if (steps > max_steps) {
+        double best = -std::numeric_limits<double>::infinity();
+        for (int c = 0; c < static_cast<int>(tris.size()); ++c) {
+          if (!tris[c].alive) continue;
+          double worst = std::numeric_limits<double>::infinity();
+          for (int i = 0; i < 3; ++i) worst = std::min(worst, orient(p[tris[c].v[(i + 1) % 3]], p[tris[c].v[(i + 2) % 3]], q));
+          if (worst > best) best = worst, t = c;
+        }
+        break;
+      }
       const Tri& T = tris[t];
       int next = -1;
-      for (int i = 0; i < 3; ++i) {
+      for (int k = 0; k < 3; ++k) {
+        const int i = (k + steps) % 3;
         if (orient(p[T.v[(i + 1) % 3]], p[T.v[(i + 2) % 3]], q) < 0) {
           next = T.n[i];
           break;

@@ -245,6 +245,29 @@ TEST(PartModel, RightAngleBayPartIsWholeAndAgreesWithCalculix) {
   for (const auto& [h, c] : compliance) EXPECT_NEAR(c / compliance[4.5e-3], 1.0, 0.02) << "h = " << h;
 }
 
+// The base and one branch of a corner_obstacle part: the mesher's point
+// location walked in a cycle on one of its plates ("Delaunay point location
+// did not terminate") until the walk rotated the edge it tries first. The
+// model must mesh whole: its triangles cover exactly the three plates.
+TEST(PartModel, BranchOfCornerObstaclePartMeshes) {
+  const Problem p = load_problem(std::string(SHEETGEN_SOURCE_DIR) + "/sample_scenes/corner_obstacle/problem.json");
+  const std::string path = std::string(SHEETGEN_SOURCE_DIR) + "/tests/native/structure/data/corner_obstacle_branch.json";
+  std::ifstream in(path);
+  std::stringstream text;
+  text << in.rdbuf();
+  const PlateGeometry g = plate_geometry_from_json(text.str(), path);
+  ASSERT_EQ(g.polygons.size(), 3u);
+  PartModel pm;
+  ASSERT_NO_THROW(pm = build_part_model(p, 0, g));
+  double plates = 0, mesh = 0;
+  for (const auto& poly : g.polygons)
+    for (size_t i = 1; i + 1 < poly.size(); ++i) plates += 0.5 * (poly[i] - poly[0]).cross(poly[i + 1] - poly[0]).norm();
+  for (const auto& t : pm.model.triangles)
+    mesh += 0.5 * (pm.model.nodes[t[1]] - pm.model.nodes[t[0]]).cross(pm.model.nodes[t[2]] - pm.model.nodes[t[0]]).norm();
+  EXPECT_NEAR(mesh, plates, 1e-9 * plates);
+  std::printf("corner_obstacle branch: %zu triangles, %.6g of %.6g m^2\n", pm.model.triangles.size(), mesh, plates);
+}
+
 TEST(PartModel, JsonTabsGiveTheSameModel) {
   const Problem p = bracket_problem();
   const Part part = hat_part(p);
