@@ -15,8 +15,8 @@ def available():
         return False
 
 
-def draw(part, path, width_px=800, height_px=500, dpi=100):
-    """Write the flat pattern of ``part`` (a result.json part with status ok) to ``path`` (PNG)."""
+def build_figure(part, width_px=800, height_px=500, dpi=100):
+    """The flat pattern's matplotlib figure and its bend labels (annotations), not saved."""
     import matplotlib
     matplotlib.use("Agg", force=False)
     from matplotlib.figure import Figure
@@ -26,7 +26,7 @@ def draw(part, path, width_px=800, height_px=500, dpi=100):
     fp = part["flat_pattern"]
     mm = 1e3
     fig = Figure(figsize=(width_px / dpi, height_px / dpi), dpi=dpi)
-    FigureCanvasAgg(fig)
+    canvas = FigureCanvasAgg(fig)
     ax = fig.add_axes([0.02, 0.02, 0.96, 0.88])
     ax.set_aspect("equal")
     ax.axis("off")
@@ -40,18 +40,6 @@ def draw(part, path, width_px=800, height_px=500, dpi=100):
         pts = [(x * mm, y * mm) for x, y in rl.get("polygon", [])]
         if pts:
             ax.add_patch(Polygon(pts, closed=True, facecolor="none", edgecolor="#8a5a00", linewidth=0.8))
-    for b in fp.get("bends", []):
-        (ax_, ay), (bx, by) = b["a"], b["b"]
-        colour = "#c62828" if b.get("direction", "down") == "down" else "#1565c0"
-        ax.plot([ax_ * mm, bx * mm], [ay * mm, by * mm], linestyle=(0, (6, 3)), color=colour, linewidth=1.4)
-        mx, my = (ax_ + bx) / 2 * mm, (ay + by) / 2 * mm
-        L = math.hypot(bx - ax_, by - ay) or 1.0
-        nx, ny = -(by - ay) / L, (bx - ax_) / L   # label beside the line, not on it
-        ax.annotate("%d: %.0f° %s" % (b.get("number", 0), math.degrees(abs(b.get("angle", 0))),
-                                      b.get("direction", "")),
-                    (mx, my), xytext=(14 * nx, 14 * ny), textcoords="offset points",
-                    fontsize=8, color=colour, ha="center", va="center",
-                    bbox=dict(boxstyle="round,pad=0.15", facecolor="white", edgecolor="none", alpha=0.8))
     if xs:
         span = max(max(xs) - min(xs), max(ys) - min(ys))
         pad = 0.06 * span
@@ -60,8 +48,44 @@ def draw(part, path, width_px=800, height_px=500, dpi=100):
         x0, y0 = min(xs), min(ys) - pad * 0.6
         ax.plot([x0, x0 + 50], [y0, y0], color="black", linewidth=2)
         ax.annotate("50 mm", (x0 + 25, y0), xytext=(0, 3), textcoords="offset points", ha="center", fontsize=8)
+    # Fix the axes' final place (equal aspect) before measuring label boxes.
+    ax.apply_aspect()
+    renderer = canvas.get_renderer()
+    labels, boxes = [], []
+    for b in fp.get("bends", []):
+        (ax_, ay), (bx, by) = b["a"], b["b"]
+        colour = "#c62828" if b.get("direction", "down") == "down" else "#1565c0"
+        ax.plot([ax_ * mm, bx * mm], [ay * mm, by * mm], linestyle=(0, (6, 3)), color=colour, linewidth=1.4)
+        mx, my = (ax_ + bx) / 2 * mm, (ay + by) / 2 * mm
+        L = math.hypot(bx - ax_, by - ay) or 1.0
+        nx, ny = -(by - ay) / L, (bx - ax_) / L   # label beside the line, not on it
+        tx, ty = (bx - ax_) / L, (by - ay) / L
+        text = "%d: %.0f° %s" % (b.get("number", 0), math.degrees(abs(b.get("angle", 0))), b.get("direction", ""))
+        # Bends close together (the two folds of a leg and its flange) would
+        # print their labels over each other: try beside the line on either
+        # side, then further out, then slid along the line, and keep the first
+        # place that is clear of the labels already placed.
+        tries = [(14, 0), (-14, 0), (28, 0), (-28, 0), (14, 30), (14, -30), (-14, 30), (-14, -30), (42, 0), (-42, 0)]
+        chosen = None
+        for k, (off_n, off_t) in enumerate(tries):
+            ann = ax.annotate(text, (mx, my), xytext=(off_n * nx + off_t * tx, off_n * ny + off_t * ty),
+                              textcoords="offset points", fontsize=8, color=colour, ha="center", va="center",
+                              bbox=dict(boxstyle="round,pad=0.15", facecolor="white", edgecolor="none", alpha=0.8))
+            box = ann.get_window_extent(renderer).expanded(1.08, 1.25)  # the white box around the text
+            if not any(box.overlaps(other) for other in boxes) or k == len(tries) - 1:
+                chosen = (ann, box)
+                break
+            ann.remove()
+        labels.append(chosen[0])
+        boxes.append(chosen[1])
     fig.suptitle("%s — flat pattern: %.1f cm², %d bends (red down, blue up)"
                  % (part.get("load", "?"), fp.get("area_m2", part.get("area_m2", 0)) * 1e4,
                     len(fp.get("bends", []))), fontsize=10)
+    return fig, labels
+
+
+def draw(part, path, width_px=800, height_px=500, dpi=100):
+    """Write the flat pattern of ``part`` (a result.json part with status ok) to ``path`` (PNG)."""
+    fig, _ = build_figure(part, width_px, height_px, dpi)
     fig.savefig(path, dpi=dpi, facecolor="white")
     return path
