@@ -163,6 +163,12 @@ int export_ccx(const ExportCcxArgs& a) {
     std::printf("ours: h = %.4g mm, %zu triangles, %d DOF, compliance %.8g J, deflection %.8g mm\n",
                 model.mesh.element_size * 1e3, model.model.triangles.size(), r.reduced_dofs, r.compliance,
                 r.load_deflection * 1e3);
+    if (r.max_von_mises_element >= 0) {
+      const auto& tri = model.model.triangles[r.max_von_mises_element];
+      const sheetgen::Vec3 c = (model.model.nodes[tri[0]] + model.model.nodes[tri[1]] + model.model.nodes[tri[2]]) / 3.0;
+      std::printf("ours: max von Mises %.6g MPa (stress rule) at element centroid (%.2f, %.2f, %.2f) mm, MS %.4g\n",
+                  r.max_von_mises * 1e-6, c.x() * 1e3, c.y() * 1e3, c.z() * 1e3, r.margin_of_safety);
+    }
     if (!a.displacements.empty()) {
       // Node by node against CalculiX's .dat: where the two solvers part.
       std::ofstream csv(fs::u8path(a.displacements), std::ios::binary);

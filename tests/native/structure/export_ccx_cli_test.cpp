@@ -79,6 +79,10 @@ TEST(ExportCcxCli, DeckEqualsTheLibraryModel) {
   ASSERT_NE(at, std::string::npos) << out3;
   EXPECT_NEAR(std::stod(out3.substr(at + 11)), ours.compliance, 1e-7 * ours.compliance) << out3;  // printed to 8 digits
   EXPECT_NE(out3.find("h = 7 mm"), std::string::npos) << out3;
+  // ... and where the stress rule's maximum is, with its value.
+  const auto at_vm = out3.find("max von Mises ");
+  ASSERT_NE(at_vm, std::string::npos) << out3;
+  EXPECT_NEAR(std::stod(out3.substr(at_vm + 14)) * 1e6, ours.max_von_mises, 1e-5 * ours.max_von_mises) << out3;
   // --displacements: our u by deck node id; the deck's *CLOAD lines dotted
   // with it give back the compliance f^T u.
   std::map<int, std::array<double, 3>> u;
