@@ -202,21 +202,28 @@ TEST(ShellModel, StressRuleAndMarginOfSafety) {
   EXPECT_NEAR(r.margin_of_safety, 345e6 / (1.5 * r.max_von_mises) - 1, 1e-12);
 }
 
-// L-bracket of NOTES.md through the plate mesher at element size h.
-ShellResult mesh_l_bracket(double h, ShellSolver& solver, ShellModel* out = nullptr) {
-  const std::vector<Vec3> leg1 = {Vec3(0, 0, 0), Vec3(0.05, 0, 0), Vec3(0.05, 0.02, 0), Vec3(0, 0.02, 0)};
-  const std::vector<Vec3> leg2 = {Vec3(0.05, 0, 0), Vec3(0.05, 0, 0.03), Vec3(0.05, 0.02, 0.03), Vec3(0.05, 0.02, 0)};
+// Two plates through the plate mesher at element size h: the first clamped
+// along its edge 3 -> 0, 1 N along x spread over the second's edge 1 -> 2.
+ShellModel clamped_pair(const std::vector<Vec3>& clamped, const std::vector<Vec3>& loaded, double h) {
   PlateMeshOptions opt;
   opt.element_size = h;
-  const PlateMesh pm = mesh_plates({leg1, leg2}, {}, opt);
+  const PlateMesh pm = mesh_plates({clamped, loaded}, {}, opt);
   ShellModel m;
   m.material = aluminium_nu0();
   m.nodes = pm.mesh.vertices;
   m.triangles = pm.mesh.triangles;
-  for (int n : nodes_on_segment(pm.mesh, leg1[0], leg1[3])) m.clamp(n);
-  const std::vector<int> top = nodes_on_segment(pm.mesh, leg2[1], leg2[2]);
+  for (int n : nodes_on_segment(pm.mesh, clamped[0], clamped[3])) m.clamp(n);
+  const std::vector<int> top = nodes_on_segment(pm.mesh, loaded[1], loaded[2]);
   for (size_t k = 0; k < top.size(); ++k)
     m.add_load(top[k], Vec3((k == 0 || k + 1 == top.size() ? 0.5 : 1.0) / (top.size() - 1), 0, 0));
+  return m;
+}
+
+// L-bracket of NOTES.md through the plate mesher at element size h.
+ShellResult mesh_l_bracket(double h, ShellSolver& solver, ShellModel* out = nullptr) {
+  const std::vector<Vec3> leg1 = {Vec3(0, 0, 0), Vec3(0.05, 0, 0), Vec3(0.05, 0.02, 0), Vec3(0, 0.02, 0)};
+  const std::vector<Vec3> leg2 = {Vec3(0.05, 0, 0), Vec3(0.05, 0, 0.03), Vec3(0.05, 0.02, 0.03), Vec3(0.05, 0.02, 0)};
+  const ShellModel m = clamped_pair(leg1, leg2, h);
   if (out) *out = m;
   return solver.solve(m);
 }
@@ -248,17 +255,7 @@ ShellResult mesh_t_bracket(double h, const ShellSolveOptions& options, ShellMode
   const std::vector<Vec3> base = {Vec3(0, 0, 0), Vec3(0.05, 0, 0), Vec3(0.05, 0.04, 0), Vec3(0, 0.04, 0)};
   const std::vector<Vec3> leg = {Vec3(0.05, 0.01, 0), Vec3(0.05, 0.01, 0.03), Vec3(0.05, 0.03, 0.03),
                                  Vec3(0.05, 0.03, 0)};
-  PlateMeshOptions opt;
-  opt.element_size = h;
-  const PlateMesh pm = mesh_plates({base, leg}, {}, opt);
-  ShellModel m;
-  m.material = aluminium_nu0();
-  m.nodes = pm.mesh.vertices;
-  m.triangles = pm.mesh.triangles;
-  for (int n : nodes_on_segment(pm.mesh, base[0], base[3])) m.clamp(n);
-  const std::vector<int> top = nodes_on_segment(pm.mesh, leg[1], leg[2]);
-  for (size_t k = 0; k < top.size(); ++k)
-    m.add_load(top[k], Vec3((k == 0 || k + 1 == top.size() ? 0.5 : 1.0) / (top.size() - 1), 0, 0));
+  const ShellModel m = clamped_pair(base, leg, h);
   if (out) *out = m;
   return solve_shell(m, options);
 }
