@@ -253,26 +253,29 @@ std::uint64_t pattern_hash(const SparseMatrix& K) {
 // in the rule. A boundary node is one on an edge that only one triangle uses.
 std::vector<int> find_reentrant_corners(const ShellModel& m, double min_angle) {
   const int n_nodes = static_cast<int>(m.nodes.size());
-  std::unordered_map<std::uint64_t, int> edge_uses;
-  edge_uses.reserve(3 * m.triangles.size());
-  auto edge_key = [](int a, int b) {
-    const auto lo = static_cast<std::uint64_t>(std::min(a, b)), hi = static_cast<std::uint64_t>(std::max(a, b));
-    return (lo << 32) | hi;
-  };
+  // Runs once per solve (composition solves hundreds of candidates): sorted
+  // edge keys rather than a hash map.
+  std::vector<std::uint64_t> edges;
+  edges.reserve(3 * m.triangles.size());
   std::vector<double> angle_sum(n_nodes, 0.0);
   for (const auto& t : m.triangles)
     for (int k = 0; k < 3; ++k) {
-      ++edge_uses[edge_key(t[k], t[(k + 1) % 3])];
-      const Vec3 u = m.nodes[t[(k + 1) % 3]] - m.nodes[t[k]];
-      const Vec3 v = m.nodes[t[(k + 2) % 3]] - m.nodes[t[k]];
-      angle_sum[t[k]] += std::atan2(u.cross(v).norm(), u.dot(v));
+      const int a = t[k], b = t[(k + 1) % 3];
+      edges.push_back((static_cast<std::uint64_t>(std::min(a, b)) << 32) | static_cast<std::uint64_t>(std::max(a, b)));
+      const Vec3 u = m.nodes[b] - m.nodes[a];
+      const Vec3 v = m.nodes[t[(k + 2) % 3]] - m.nodes[a];
+      angle_sum[a] += std::atan2(u.cross(v).norm(), u.dot(v));
     }
+  std::sort(edges.begin(), edges.end());
   std::vector<char> on_boundary(n_nodes, 0);
-  for (const auto& [key, uses] : edge_uses)
-    if (uses == 1) {
-      on_boundary[key >> 32] = 1;
-      on_boundary[key & 0xffffffffu] = 1;
+  for (size_t i = 0, j = 0; i < edges.size(); i = j) {
+    for (j = i + 1; j < edges.size() && edges[j] == edges[i]; ++j) {
     }
+    if (j - i == 1) {  // an edge only one triangle uses
+      on_boundary[edges[i] >> 32] = 1;
+      on_boundary[edges[i] & 0xffffffffu] = 1;
+    }
+  }
   std::vector<int> corners;
   for (int i = 0; i < n_nodes; ++i)
     if (on_boundary[i] && angle_sum[i] > min_angle) corners.push_back(i);
