@@ -195,6 +195,15 @@ TEST(PartModel, CornersMicrometresOffTheirNeighboursKeepTheFoldsWhole) {
   EXPECT_NEAR(b.deflection / a.deflection, 1.0, 1e-3);
 }
 
+// The tabs of a part saved under tests/native/structure/data/NAME.json.
+PlateGeometry fixture_geometry(const std::string& name) {
+  const std::string path = std::string(SHEETGEN_SOURCE_DIR) + "/tests/native/structure/data/" + name + ".json";
+  std::ifstream in(path);
+  std::stringstream text;
+  text << in.rdbuf();
+  return plate_geometry_from_json(text.str(), path);
+}
+
 // The right-angle bay's gps_receiver part (11 tabs, two 500 mm legs; its tab
 // corners miss their neighbours' by 0.3, 0.4 and 2.4 um) against CalculiX,
 // docs/fem.md "A large right-angle part". References: ccx 2.20 on the decks
@@ -205,11 +214,7 @@ TEST(PartModel, CornersMicrometresOffTheirNeighboursKeepTheFoldsWhole) {
 // the fixed model first hit a 0.3 um sliver and a singular stiffness.
 TEST(PartModel, RightAngleBayPartIsWholeAndAgreesWithCalculix) {
   const Problem p = load_problem(std::string(SHEETGEN_SOURCE_DIR) + "/sample_scenes/avionics_bay/problem.json");
-  const std::string path = std::string(SHEETGEN_SOURCE_DIR) + "/tests/native/structure/data/gps_receiver_right_angles.json";
-  std::ifstream in(path);
-  std::stringstream text;
-  text << in.rdbuf();
-  const PlateGeometry g = plate_geometry_from_json(text.str(), path);
+  const PlateGeometry g = fixture_geometry("gps_receiver_right_angles");
   int load = -1;
   for (size_t i = 0; i < p.loads.size(); ++i)
     if (p.loads[i].name == "gps_receiver") load = static_cast<int>(i);
@@ -251,11 +256,7 @@ TEST(PartModel, RightAngleBayPartIsWholeAndAgreesWithCalculix) {
 // model must mesh whole: its triangles cover exactly the three plates.
 TEST(PartModel, BranchOfCornerObstaclePartMeshes) {
   const Problem p = load_problem(std::string(SHEETGEN_SOURCE_DIR) + "/sample_scenes/corner_obstacle/problem.json");
-  const std::string path = std::string(SHEETGEN_SOURCE_DIR) + "/tests/native/structure/data/corner_obstacle_branch.json";
-  std::ifstream in(path);
-  std::stringstream text;
-  text << in.rdbuf();
-  const PlateGeometry g = plate_geometry_from_json(text.str(), path);
+  const PlateGeometry g = fixture_geometry("corner_obstacle_branch");
   ASSERT_EQ(g.polygons.size(), 3u);
   PartModel pm;
   ASSERT_NO_THROW(pm = build_part_model(p, 0, g));
