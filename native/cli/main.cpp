@@ -101,6 +101,8 @@ struct ExportCcxArgs {
   double element_size_mm = 0;  // mm; <= 0: default_element_size (docs/fem.md)
   bool solve = false;
   std::string displacements;  // with --solve: CSV of our displacements by deck node id (m)
+  std::string element_type = "S4";  // CalculiX element: S4 (split triangles) or S8R (the same with mid-side nodes)
+  bool kirchhoff = false;           // with --solve: our DKT (no transverse shear) instead of DKMT, for studies
 };
 
 int export_ccx(const ExportCcxArgs& a) {
@@ -147,19 +149,24 @@ int export_ccx(const ExportCcxArgs& a) {
   {
     std::ofstream deck(tmp, std::ios::binary);
     if (!deck) throw sheetgen::InputError(out_path, "--out", "cannot be written (" + std::string(std::strerror(errno)) + ")");
-    map = sheetgen::write_ccx_deck(model.model, deck);
+    sheetgen::CcxExportOptions deck_options;
+    deck_options.element_type = a.element_type;
+    map = sheetgen::write_ccx_deck(model.model, deck, deck_options);
     deck.flush();
     if (!deck) {
       std::error_code ec;
       fs::remove(tmp, ec);
       throw sheetgen::InputError(out_path, "--out", "write failed (disk full?)");
     }
-    std::printf("wrote %s: %d nodes, %d S4 elements, %zu rivets clamped, load at node %d\n", out_path.c_str(),
-                map.node_count, map.element_count, model.rivets.size(), map.ref_node.empty() ? -1 : map.ref_node.back());
+    std::printf("wrote %s: %d nodes, %d %s elements, %zu rivets clamped, load at node %d\n", out_path.c_str(),
+                map.node_count, map.element_count, a.element_type.c_str(), model.rivets.size(),
+                map.ref_node.empty() ? -1 : map.ref_node.back());
   }
   fs::rename(tmp, out);
   if (a.solve) {
-    const sheetgen::ShellResult r = sheetgen::solve_shell(model.model);
+    sheetgen::ShellSolveOptions solve_options;
+    solve_options.element.transverse_shear = !a.kirchhoff;
+    const sheetgen::ShellResult r = sheetgen::solve_shell(model.model, solve_options);
     std::printf("ours: h = %.4g mm, %zu triangles, %d DOF, compliance %.8g J, deflection %.8g mm\n",
                 model.mesh.element_size * 1e3, model.model.triangles.size(), r.reduced_dofs, r.compliance,
                 r.load_deflection * 1e3);
@@ -317,6 +324,11 @@ int main(int argc, char** argv) {
   ccx->add_flag("--solve", ccx_args.solve, "also solve the model with sheetgen's FEM and print compliance and deflection");
   ccx->add_option("--displacements", ccx_args.displacements,
                   "with --solve: write our displacements by deck node id to this CSV (m), to compare with CalculiX's .dat");
+  ccx->add_option("--element-type", ccx_args.element_type,
+                  "CalculiX element: S4 (default) or S8R (quadratic; the accuracy reference, docs/fem.md)")
+      ->check(CLI::IsMember({"S4", "S8R"}));
+  ccx->add_flag("--kirchhoff", ccx_args.kirchhoff,
+                "with --solve: solve with DKT (no transverse shear) instead of the default DKMT, for studies");
 
   try {
     app.parse(argc, argv);

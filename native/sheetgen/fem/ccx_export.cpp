@@ -28,8 +28,8 @@ std::vector<char> element_nodes(const ShellModel& m) {
 
 CcxDeckMap write_ccx_deck(const ShellModel& m, std::ostream& out, const CcxExportOptions& options) {
   validate_shell_model(m);
-  if (options.element_type != "S4" && options.element_type != "S4R")
-    throw FemError("ccx export", "element type must be S4 or S4R (got " + options.element_type + ")");
+  if (options.element_type != "S4" && options.element_type != "S4R" && options.element_type != "S8R")
+    throw FemError("ccx export", "element type must be S4, S4R or S8R (got " + options.element_type + ")");
   const std::vector<char> in_element = element_nodes(m);
   CcxDeckMap map;
   map.node_id.assign(m.nodes.size(), -1);
@@ -48,8 +48,13 @@ CcxDeckMap write_ccx_deck(const ShellModel& m, std::ostream& out, const CcxExpor
   out << std::setprecision(13);
   out << "*HEADING\n" << options.heading << "\n** Units: m, N, Pa. Written by sheetgen (docs/fem.md).\n";
   out << "*NODE, NSET=NALL\n";
+  std::vector<Vec3> deck_position(1, Vec3::Zero());  // by deck id (ids are consecutive from 1)
+  auto emit = [&](int id, const Vec3& p) {
+    out << id << ", " << p.x() << ", " << p.y() << ", " << p.z() << "\n";
+    deck_position.push_back(p);
+  };
   for (size_t i = 0; i < m.nodes.size(); ++i)
-    if (written[i]) out << map.node_id[i] << ", " << m.nodes[i].x() << ", " << m.nodes[i].y() << ", " << m.nodes[i].z() << "\n";
+    if (written[i]) emit(map.node_id[i], m.nodes[i]);
   // The split adds nodes our model does not have. Where our element's field is
   // set by its corner values alone, a new node must be held the same way, or
   // the deck is a softer model than ours: an edge whose two ends are clamped
@@ -93,7 +98,7 @@ CcxDeckMap write_ccx_deck(const ShellModel& m, std::ostream& out, const CcxExpor
     if (it != midpoint.end()) return it->second;
     const Vec3 p = 0.5 * (m.nodes[a] + m.nodes[b]);
     const int id = ++next;
-    out << id << ", " << p.x() << ", " << p.y() << ", " << p.z() << "\n";
+    emit(id, p);
     midpoint.emplace(key, id);
     hold(id, {a, b});
     return id;
@@ -104,12 +109,41 @@ CcxDeckMap write_ccx_deck(const ShellModel& m, std::ostream& out, const CcxExpor
     const int m01 = mid(t[0], t[1]), m12 = mid(t[1], t[2]), m20 = mid(t[2], t[0]);
     const Vec3 c = (m.nodes[t[0]] + m.nodes[t[1]] + m.nodes[t[2]]) / 3.0;
     const int cid = ++next;
-    out << cid << ", " << c.x() << ", " << c.y() << ", " << c.z() << "\n";
+    emit(cid, c);
     hold(cid, {t[0], t[1], t[2]});
     // Counter-clockwise like the triangle, so every quad keeps its normal.
     quads.push_back({map.node_id[t[0]], m01, cid, m20});
     quads.push_back({map.node_id[t[1]], m12, cid, m01});
     quads.push_back({map.node_id[t[2]], m20, cid, m12});
+  }
+  // S8R: a mid-side node on every quad edge, held like the split nodes (clamped
+  // when both ends are, in a rigid body when both ends are in it).
+  std::vector<std::array<int, 4>> sides;
+  if (options.element_type == "S8R") {
+    std::vector<char> deck_clamped(next + 1, 0);
+    std::vector<int> deck_link(next + 1, -1);
+    for (size_t i = 0; i < m.nodes.size(); ++i)
+      if (map.node_id[i] > 0) {
+        deck_clamped[map.node_id[i]] = clamped[i];
+        deck_link[map.node_id[i]] = link_of[i];
+      }
+    for (int id : held_clamped) deck_clamped[id] = 1;
+    for (size_t l = 0; l < held_linked.size(); ++l)
+      for (int id : held_linked[l]) deck_link[id] = static_cast<int>(l);
+    std::unordered_map<long long, int> side_node;
+    const long long stride = next + 1LL;  // corner ids are below it
+    auto side = [&](int a, int b) {
+      const long long key = static_cast<long long>(std::min(a, b)) * stride + std::max(a, b);
+      auto it = side_node.find(key);
+      if (it != side_node.end()) return it->second;
+      const int id = ++next;
+      emit(id, 0.5 * (deck_position[a] + deck_position[b]));
+      side_node.emplace(key, id);
+      if (deck_clamped[a] && deck_clamped[b]) held_clamped.push_back(id);
+      else if (deck_link[a] >= 0 && deck_link[a] == deck_link[b]) held_linked[deck_link[a]].push_back(id);
+      return id;
+    };
+    for (const auto& q : quads) sides.push_back({side(q[0], q[1]), side(q[1], q[2]), side(q[2], q[3]), side(q[3], q[0])});
   }
   // Rigid-link reference and rotation nodes.
   for (const RigidLink& l : m.rigid_links) {
@@ -127,7 +161,12 @@ CcxDeckMap write_ccx_deck(const ShellModel& m, std::ostream& out, const CcxExpor
   map.node_count = next;
   out << "*ELEMENT, TYPE=" << options.element_type << ", ELSET=EALL\n";
   int eid = 0;
-  for (const auto& q : quads) out << ++eid << ", " << q[0] << ", " << q[1] << ", " << q[2] << ", " << q[3] << "\n";
+  for (size_t k = 0; k < quads.size(); ++k) {
+    const auto& q = quads[k];
+    out << ++eid << ", " << q[0] << ", " << q[1] << ", " << q[2] << ", " << q[3];
+    if (!sides.empty()) out << ", " << sides[k][0] << ", " << sides[k][1] << ", " << sides[k][2] << ", " << sides[k][3];
+    out << "\n";
+  }
   map.element_count = eid;
   out << "*MATERIAL, NAME=SHEET\n*ELASTIC\n"
       << m.material.youngs_modulus << ", " << m.material.poisson_ratio << "\n";

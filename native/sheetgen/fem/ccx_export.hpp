@@ -21,7 +21,11 @@ namespace sheetgen {
 
 struct CcxExportOptions {
   std::string heading = "sheetgen flat-shell model";
-  std::string element_type = "S4";  // "S4" or "S4R"; triangles are split into 3 quads either way
+  // "S4", "S4R" or "S8R"; triangles are split into 3 quads either way. S8R
+  // (quadratic, a mid-side node per quad edge) is the reference for our
+  // element's accuracy: S4 on split triangles converges slowly from below
+  // (docs/fem.md "Transverse shear").
+  std::string element_type = "S4";
 };
 
 // Where the model's entities went in the deck (CalculiX ids are 1-based).

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <sstream>
 
+#include "sheetgen/fem/dkmt_plate.hpp"
 #include "sheetgen/fem/fem_error.hpp"
 
 namespace sheetgen {
@@ -165,7 +166,9 @@ Matrix18d shell_element_stiffness(const std::array<Vec3, 3>& nodes, const Materi
   const ShellFrame f = shell_frame(nodes);
   const double E = material.youngs_modulus, nu = material.poisson_ratio, h = material.thickness;
   const Matrix9d Km = opt_membrane_stiffness(f.local_xy, E, nu, h, options);
-  const Matrix9d Kb = dkt_bending_stiffness(f.local_xy, E, nu, h);
+  const Matrix9d Kb = options.transverse_shear
+                          ? dkmt_bending_stiffness(f.local_xy, E, nu, h, options.shear_correction)
+                          : dkt_bending_stiffness(f.local_xy, E, nu, h);
   Matrix18d Kl = Matrix18d::Zero();
   for (int a = 0; a < 3; ++a)
     for (int i = 0; i < 3; ++i)
@@ -213,7 +216,11 @@ ShellStress shell_element_stress(const std::array<Vec3, 3>& nodes, const Materia
       ab * (x23 * y32 - x31 * y13) / 3;
   const Eigen::Vector3d eps = Lt * um / (2.0 * f.area);
   const Eigen::Matrix3d D = plane_stress(E, nu);
-  const Eigen::Vector3d kappa = dkt_curvature_matrix(xy, 1.0 / 3, 1.0 / 3) * ub;
+  const Eigen::Vector3d kappa =
+      (options.transverse_shear
+           ? dkmt_curvature_matrix(xy, dkmt_shear_ratios(xy, nu, h, options.shear_correction), 1.0 / 3, 1.0 / 3)
+           : dkt_curvature_matrix(xy, 1.0 / 3, 1.0 / 3)) *
+      ub;
   ShellStress s;
   s.membrane = D * eps;
   const Eigen::Vector3d bending = (0.5 * h) * (D * kappa);  // sigma(z) = z D kappa at z = t/2

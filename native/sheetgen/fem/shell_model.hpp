@@ -98,7 +98,7 @@ struct ShellSolveOptions {
   double reentrant_corner_angle = 190.0 * M_PI / 180.0;
   // A pivot smaller than this fraction of its diagonal entry means the model
   // is a mechanism (a rigid-body mode no support holds).
-  double singular_pivot_ratio = 1e-11;
+  double singular_pivot_ratio = 1e-9;
 };
 
 struct ShellResult {

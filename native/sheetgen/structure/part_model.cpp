@@ -126,6 +126,7 @@ StructuralResult analyse_part(const Problem& problem, int load_index, const Plat
   const auto start = std::chrono::steady_clock::now();
   const PartModel pm = build_part_model(problem, load_index, geometry, options);
   ShellSolveOptions so;
+  so.element = options.element;
   so.safety_factor = problem.requirements.safety_factor;
   const ShellResult r = solver ? solver->solve(pm.model, so) : solve_shell(pm.model, so);
   StructuralResult s;

@@ -33,6 +33,7 @@ struct SelfRivetTie {
 struct PartModelOptions {
   double element_size = 0;                // m; <= 0: default_element_size (docs/fem.md)
   std::vector<SelfRivetTie> self_rivets;  // tied after meshing
+  ShellElementOptions element;            // DKMT (transverse shear) by default
 };
 
 struct PartModel {

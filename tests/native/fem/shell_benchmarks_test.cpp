@@ -65,6 +65,29 @@ TEST(ShellBenchmarks, CantileverStripTipDeflection) {
   EXPECT_NEAR(c.result.compliance, 1.0 * w, 1e-4 * w);
 }
 
+TEST(ShellBenchmarks, ThickCantileverFollowsTimoshenko) {
+  // L = 20, b = 10, t = 4 mm, nu = 0 (no anticlastic coupling, so the strip is
+  // a beam): delta = P L^3 / (3 E I) + P L / (kappa_s G b t). Shear is 5.3 % of
+  // it, which a Kirchhoff plate (DKT) misses and DKMT must catch.
+  const double L = 0.02, b = 0.01, t = 0.004, E = 73.1e9, P = 1.0;
+  const double bending = P * L * L * L / (3 * E * b * t * t * t / 12);
+  const double shear = P * L / (5.0 / 6.0 * E / 2.0 * b * t);
+  for (bool with_shear : {true, false}) {
+    ShellModel m;
+    m.material = material(E, 0.0, t);
+    GridBuilder g(m);
+    const auto grid = g.flat(Vec3(0, 0, 0), Vec3(L, 0, 0), Vec3(0, b, 0), 32, 16);
+    for (int j = 0; j <= 16; ++j) m.clamp(grid[0][j]);
+    line_load(m, grid[32], Vec3(0, 0, P));
+    ShellSolveOptions options;
+    options.element.transverse_shear = with_shear;
+    const double w = mean_dof(solve_shell(m, options), grid[32], kUz);
+    std::printf("thick cantilever, %s: %.6g um (Timoshenko %.6g, bending alone %.6g)\n",
+                with_shear ? "DKMT" : "DKT", w * 1e6, (bending + shear) * 1e6, bending * 1e6);
+    EXPECT_NEAR(w, with_shear ? bending + shear : bending, 0.005 * (bending + shear));
+  }
+}
+
 TEST(ShellBenchmarks, CantileverSurfaceStressAtMidSpan) {
   // 40 cells along 100 mm: the elements of the two cells either side of
   // x = 50 mm have centroids averaging exactly x = 50 mm, and sigma_xx is

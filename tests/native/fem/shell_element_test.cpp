@@ -6,6 +6,7 @@
 #include <Eigen/Eigenvalues>
 #include <cmath>
 
+#include "sheetgen/fem/dkmt_plate.hpp"
 #include "sheetgen/fem/fem_error.hpp"
 
 namespace sheetgen {
@@ -74,6 +75,44 @@ TEST(ShellElement, ConstantCurvaturePatch) {
     EXPECT_NEAR(k(0), -1.0, 1e-12);
     EXPECT_NEAR(k(1), 0.0, 1e-12);
     EXPECT_NEAR(k(2), 0.0, 1e-12);
+  }
+}
+
+TEST(ShellElement, DkmtWithoutShearFlexibilityIsDkt) {
+  // phi = 0 turns DKMT's edge condition into DKT's Kirchhoff condition, so our
+  // area-coordinate construction must reproduce Batoz's explicit matrices.
+  const std::array<Vec2, 3> xy = {Vec2(0, 0), Vec2(0.031, 0.004), Vec2(0.007, 0.022)};
+  double worst = 0;
+  for (const auto& p : {std::array<double, 2>{0, 0}, {1, 0}, {0, 1}, {0.2, 0.3}, {1.0 / 3, 1.0 / 3}}) {
+    const Eigen::Matrix<double, 3, 9> a = dkmt_curvature_matrix(xy, {0, 0, 0}, p[0], p[1]);
+    const Eigen::Matrix<double, 3, 9> b = dkt_curvature_matrix(xy, p[0], p[1]);
+    worst = std::max(worst, (a - b).norm() / b.norm());
+  }
+  EXPECT_LT(worst, 1e-12);
+  // And the stiffness of a thin sheet (t / L = 1e-4) is DKT's to O(phi).
+  const Matrix9d thin = dkmt_bending_stiffness(xy, 70e9, 0.3, 3e-6, 5.0 / 6.0);
+  const Matrix9d dkt = dkt_bending_stiffness(xy, 70e9, 0.3, 3e-6);
+  EXPECT_LT((thin - dkt).norm(), 1e-6 * dkt.norm());
+}
+
+TEST(ShellElement, DkmtConstantCurvaturePatchHasNoShear) {
+  // w = x^2 / 2 + x y, rotations from the Kirchhoff slopes: a thick element
+  // (t = 10 mm on 20-30 mm edges, phi ~ 0.4) keeps kappa = (-1, 0, -2) exactly
+  // and no shear strain, so pure bending costs no shear energy.
+  const std::array<Vec2, 3> xy = {Vec2(0, 0), Vec2(0.03, 0.002), Vec2(0.01, 0.02)};
+  const std::array<double, 3> phi = dkmt_shear_ratios(xy, 0.3, 0.01, 5.0 / 6.0);
+  EXPECT_GT(phi[0], 0.1);
+  Vector9d ub;
+  for (int a = 0; a < 3; ++a) {
+    const double x = xy[a].x(), y = xy[a].y();
+    ub.segment<3>(3 * a) << 0.5 * x * x + x * y, x, -(x + y);  // rx = w,y, ry = -w,x
+  }
+  for (double xi : {0.0, 0.2, 1.0 / 3}) {
+    const Eigen::Vector3d k = dkmt_curvature_matrix(xy, phi, xi, 0.25) * ub;
+    EXPECT_NEAR(k(0), -1.0, 1e-12);
+    EXPECT_NEAR(k(1), 0.0, 1e-12);
+    EXPECT_NEAR(k(2), -2.0, 1e-12);
+    EXPECT_LT((dkmt_shear_strain_matrix(xy, phi, xi, 0.25) * ub).norm(), 1e-14);
   }
 }
 
