@@ -207,6 +207,7 @@ struct SolveArgs {
   bool no_self_rivet = false;
   bool no_lips = false;
   bool no_web_roots = false;
+  bool no_flat_fallback = false;
 };
 
 // `sheetgen solve`: exit 0 = every load has a valid part, 2 = some load has
@@ -224,6 +225,7 @@ int solve(const SolveArgs& a) {
   options.compose.self_rivet = !a.no_self_rivet;
   options.compose.stiffening_lips = !a.no_lips;
   options.web_fallback = !a.no_web_roots;
+  options.flat_fallback = !a.no_flat_fallback;
   sheetgen::GenerateProgress progress;
   std::signal(SIGINT, on_sigint);
   std::signal(SIGTERM, on_sigint);
@@ -246,8 +248,10 @@ int solve(const SolveArgs& a) {
       const long long done = progress.discovery.iterations.load(), total = std::max(1LL, progress.discovery.total.load());
       const int width = 30;
       const int filled = stage >= sheetgen::Stage::Composition ? width : static_cast<int>(width * done / total);
-      // The second search of a load (web roots, docs/pipeline.md) restarts the bar; say so.
-      const std::string label = std::string(sheetgen::to_string(stage)) + (progress.web_roots.load() ? " (webs)" : "");
+      // The second and third searches of a load (web roots, flat extensions;
+      // docs/pipeline.md) restart the bar; say so.
+      const std::string label = std::string(sheetgen::to_string(stage)) +
+                                (progress.flat_pass.load() ? " (flat)" : progress.web_roots.load() ? " (webs)" : "");
       std::fprintf(stderr, "\r  load %d/%d [%-*s] %-18s segments %3d  evaluated %4d  best %.1f cm^2   ", progress.load.load() + 1,
                    progress.loads.load(), width, std::string(filled, '#').c_str(), label.c_str(),
                    progress.discovery.segments.load(), progress.compose.evaluated.load(), progress.compose.best_cost.load() * 1e4);
@@ -313,6 +317,8 @@ int main(int argc, char** argv) {
   solve_cmd->add_flag("--no-lips", solve_args.no_lips, "do not try stiffening lips on the free edges (the paper's method alone)");
   solve_cmd->add_flag("--no-web-roots", solve_args.no_web_roots,
                       "do not search a load again with web roots when the first search finds no valid part");
+  solve_cmd->add_flag("--no-flat-fallback", solve_args.no_flat_fallback,
+                      "do not search a load a third time with flat extensions when no search found a valid part");
 
   ExportCcxArgs ccx_args;
   auto* ccx = app.add_subcommand("export-ccx", "write one load's part as a CalculiX input deck");

@@ -93,6 +93,15 @@ class HardCases(unittest.TestCase):
         reason = result["parts"][0]["reason"]
         self.assertIn("compliance", reason)
         self.assertIn("over the limit", reason)
+        # Every fallback ran before giving up: web roots, then flat extensions.
+        part = result["parts"][0]
+        self.assertTrue(part["web_pass_tried"] and part["flat_pass_tried"], part)
+        self.assertTrue(result["search"]["flat_fallback"])
+        # Flat extensions already on: no third search (it would repeat the first).
+        p, result, _ = solve(prob, "--flat-extensions")
+        self.assertEqual(p.returncode, 2, p.stdout + p.stderr)
+        self.assertFalse(result["parts"][0]["flat_pass_tried"])
+        self.assertFalse(result["search"]["flat_fallback"])
 
     def test_ctrl_c_ends_within_a_second_and_writes_nothing(self):
         prob = floor_and_wall()

@@ -29,6 +29,10 @@ struct GenerateOptions {
   // A load whose first search finds no valid part is searched again with web
   // roots (docs/discovery.md "Web roots"); off: --no-web-roots.
   bool web_fallback = true;
+  // A load that still has no valid part is searched once more with flat
+  // extensions (unless they are already on): a plate cut larger where a bend
+  // alone cannot stiffen it (docs/pipeline.md); off: --no-flat-fallback.
+  bool flat_fallback = true;
   ComposeOptions compose;      // beam_width and threads are taken from the settings above
 };
 
@@ -40,6 +44,7 @@ struct GenerateProgress {
   std::atomic<int> load{0};           // index of the load being worked on
   std::atomic<int> loads{0};          // how many
   std::atomic<bool> web_roots{false}; // the current load's second search (with web roots) is running
+  std::atomic<bool> flat_pass{false}; // the current load's third search (with flat extensions) is running
   DiscoveryProgress discovery;        // iterations / total of the current load
   ComposeProgress compose;            // level, evaluated, best cost
   std::atomic<bool> cancel{false};    // set from any thread; honoured within a second
@@ -61,6 +66,8 @@ struct LoadOutcome {
   int lip_candidates = 0;            // lipped variants the composition tried
   bool web_pass_tried = false;       // the first search found no valid part, a second ran with web roots
   bool web_roots = false;            // the answer comes from that second search
+  bool flat_pass_tried = false;      // no search so far found a valid part, a third ran with flat extensions
+  bool flat_pass = false;            // the answer comes from that third search
   double environment_seconds = 0, discovery_seconds = 0, composition_seconds = 0, total_seconds = 0;
 };
 
@@ -71,6 +78,7 @@ struct GenerateResult {
   bool flat_extensions = false;       // tabs could continue their parent flat (theta3 = 0)
   bool self_rivet = true, stiffening_lips = true;  // the composition's variants that were on
   bool web_fallback = true;           // a second search with web roots where the first found no part
+  bool flat_fallback = true;          // a third search with flat extensions where neither found one
   bool cancelled = false;
   double seconds = 0;
   bool all_ok() const;
