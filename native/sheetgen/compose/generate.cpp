@@ -152,6 +152,21 @@ bool closer(const Candidate& a, const Candidate& b, const Problem& scene) {
   return over(a) < over(b);
 }
 
+// A later search of the same load (web roots, flat extensions) against the
+// best so far: times and FEM calls count both; the later answer is kept when it
+// is valid or nearer to valid. True when it was kept.
+bool merge_pass(LoadOutcome& best, LoadOutcome&& pass, const Problem& scene) {
+  const double discovery_s = best.discovery_seconds + pass.discovery_seconds;
+  const double composition_s = best.composition_seconds + pass.composition_seconds;
+  const int fem_calls = best.fem_calls + pass.fem_calls;
+  const bool keep = pass.ok || closer(pass.part, best.part, scene);
+  if (keep) best = std::move(pass);
+  best.discovery_seconds = discovery_s;
+  best.composition_seconds = composition_s;
+  best.fem_calls = fem_calls;
+  return keep;
+}
+
 }  // namespace
 
 GenerateResult generate(const Problem& input, const GenerateOptions& options, GenerateProgress* progress) {
@@ -244,15 +259,7 @@ GenerateResult generate(const Problem& input, const GenerateOptions& options, Ge
       LoadOutcome webbed = out;
       finished = search_pass(scene, env, li, options, /*web_roots=*/true, progress, webbed);
       webbed.web_pass_tried = first.web_pass_tried = true;
-      // Times and FEM calls count both passes; the answer is the web pass's
-      // when it is valid or nearer to valid.
-      const double discovery_s = first.discovery_seconds + webbed.discovery_seconds;
-      const double composition_s = first.composition_seconds + webbed.composition_seconds;
-      const int fem_calls = first.fem_calls + webbed.fem_calls;
-      if (webbed.ok || closer(webbed.part, first.part, scene)) first = std::move(webbed);
-      first.discovery_seconds = discovery_s;
-      first.composition_seconds = composition_s;
-      first.fem_calls = fem_calls;
+      merge_pass(first, std::move(webbed), scene);
     }
     // Still nothing: once more with flat extensions (a tab may continue its
     // parent flat). Measured on the bay's data_recorder (docs/pipeline.md): the
@@ -268,18 +275,8 @@ GenerateResult generate(const Problem& input, const GenerateOptions& options, Ge
       finished = search_pass(flat_scene, env, li, options, /*web_roots=*/false, progress, flat);
       if (progress) progress->flat_pass = false;
       flat.web_pass_tried = first.web_pass_tried;
-      flat.flat_pass_tried = first.flat_pass_tried = true;
-      const double discovery_s = first.discovery_seconds + flat.discovery_seconds;
-      const double composition_s = first.composition_seconds + flat.composition_seconds;
-      const int fem_calls = first.fem_calls + flat.fem_calls;
-      if (flat.ok || closer(flat.part, first.part, scene)) {
-        flat.flat_pass = true;
-        first = std::move(flat);
-        answer_scene = &flat_scene;
-      }
-      first.discovery_seconds = discovery_s;
-      first.composition_seconds = composition_s;
-      first.fem_calls = fem_calls;
+      flat.flat_pass_tried = first.flat_pass_tried = flat.flat_pass = true;
+      if (merge_pass(first, std::move(flat), scene)) answer_scene = &flat_scene;
     }
     if (!finished || cancelled()) {
       result.cancelled = true;
