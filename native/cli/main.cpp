@@ -164,8 +164,9 @@ int export_ccx(const ExportCcxArgs& a) {
   }
   fs::rename(tmp, out);
   if (a.solve) {
-    sheetgen::ShellSolveOptions solve_options;
-    solve_options.element.transverse_shear = !a.kirchhoff;
+    sheetgen::ShellElementOptions element;
+    element.transverse_shear = !a.kirchhoff;
+    const sheetgen::ShellSolveOptions solve_options = sheetgen::part_solve_options(problem, element);
     const sheetgen::ShellResult r = sheetgen::solve_shell(model.model, solve_options);
     std::printf("ours: h = %.4g mm, %zu triangles, %d DOF, compliance %.8g J, deflection %.8g mm\n",
                 model.mesh.element_size * 1e3, model.model.triangles.size(), r.reduced_dofs, r.compliance,

@@ -178,7 +178,7 @@ def ccx_compliance(deck, dat):
     return sum(v * disp[n][d - 1] for n, d, v in cloads), float(np.linalg.norm(disp[ref]))
 
 
-def ccx_max_von_mises(deck, dat, t):
+def ccx_max_von_mises(deck, dat, t, corner_clearance=0.0):
     """The largest surface von Mises stress (Pa) CalculiX finds away from the singular points.
 
     CalculiX expands each S4 shell into a brick with 2 x 2 x 2 integration points
@@ -191,7 +191,9 @@ def ccx_max_von_mises(deck, dat, t):
     re-entrant corner of the outline (corner angles > 190 deg) are left out.
     h_p is the longest triangle edge at p, as in sheetgen's rule: the deck
     splits every triangle at its edge midpoints into three quads, so it is
-    twice the longest quad edge at p. Returns (sigma_max, number of singular
+    twice the longest quad edge at p. At a re-entrant corner the radius is
+    2 t + max(h_p, corner_clearance), the bend radius, as sheetgen's rule
+    (docs/fem.md "Graded fold ends"). Returns (sigma_max, number of singular
     points, number of re-entrant corners).
     """
     ids, X = [], []
@@ -261,7 +263,10 @@ def ccx_max_von_mises(deck, dat, t):
     centre = Q.mean(axis=1)
     excluded = np.zeros(len(quads), bool)
     if len(pts):
-        Y, r2 = X[pts], (2 * t + 2 * size[pts]) ** 2
+        reach = 2 * size[pts]
+        at_corner = np.isin(pts, corners)
+        reach[at_corner] = np.maximum(reach[at_corner], corner_clearance)
+        Y, r2 = X[pts], (2 * t + reach) ** 2
         step = max(1, int(4e6 // len(pts)))  # a step x #points distance matrix, ~32 MB
         for k in range(0, len(quads), step):
             c = centre[k:k + step]
@@ -357,7 +362,7 @@ def check_part(out_dir, prob, meshes, part, args, report, bad):
 
             # Ask CalculiX for the stresses at its integration points as well.
             text, dat, (C4, _) = run_deck("part", "S4", "*EL PRINT, ELSET=EALL\nS\n")
-            s_ccx, n_singular, n_corners = ccx_max_von_mises(text, dat, t)
+            s_ccx, n_singular, n_corners = ccx_max_von_mises(text, dat, t, R)
             _, _, (C, deflection) = run_deck("part8", "S8R")
         c_ours, d_ours, limit = part["compliance"], part["deflection_m"], part["compliance_limit"]
         report.append(f"{name}: compliance ours {c_ours:.5g} J, CalculiX S8R {C:.5g} J ({(c_ours / C - 1) * 100:+.2f} %), "

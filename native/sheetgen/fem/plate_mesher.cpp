@@ -7,6 +7,7 @@
 #include <cstdint>
 #include <sstream>
 #include <unordered_map>
+#include <utility>
 
 #include "sheetgen/fem/delaunay_2d.hpp"
 #include "sheetgen/fem/fem_error.hpp"
@@ -126,6 +127,124 @@ double polygon_min_width(const std::vector<Vec3>& poly) {
   return width;
 }
 
+constexpr double kPi = 3.14159265358979323846;
+
+// Target element size: h, except near fold ends, where it shrinks to h0 at
+// the corner and grows by `grading` per unit distance from it. Distances are
+// in 3-D, so the two polygons sharing an edge see the same field and sample
+// the edge at the same points.
+class SizeField {
+ public:
+  SizeField(double h, double h0, double grading, std::vector<Vec3> corners)
+      : h_(h), h0_(h0), grading_(grading), corners_(std::move(corners)) {
+    if (corners_.empty()) return;
+    // Rings of points around a corner: each ring one local size (times the
+    // height of an equilateral triangle) beyond the last, up to the first
+    // ring where the size is h.
+    for (double r = h0_; ; r += 0.87 * size_at_distance(r)) {
+      ring_radii_.push_back(r);
+      if (size_at_distance(r) >= h_) break;
+    }
+  }
+  bool graded() const { return !corners_.empty(); }
+  const std::vector<Vec3>& corners() const { return corners_; }
+  const std::vector<double>& ring_radii() const { return ring_radii_; }
+  // Beyond this distance from every corner the equilateral lattice of h fills the inside.
+  double lattice_distance() const { return ring_radii_.empty() ? 0.0 : ring_radii_.back() + 0.6 * h_; }
+  double size_at_distance(double d) const { return std::min(h_, h0_ + grading_ * d); }
+  int nearest(const Vec3& x, double* distance = nullptr) const {
+    int best = -1;
+    double d2 = std::numeric_limits<double>::infinity();
+    for (size_t i = 0; i < corners_.size(); ++i)
+      if ((corners_[i] - x).squaredNorm() < d2) d2 = (corners_[i] - x).squaredNorm(), best = static_cast<int>(i);
+    if (distance) *distance = std::sqrt(d2);
+    return best;
+  }
+  double at(const Vec3& x) const {
+    double d = std::numeric_limits<double>::infinity();
+    nearest(x, &d);
+    return size_at_distance(d);
+  }
+
+  // Points dividing the piece [P, Q] into elements: P first, Q left out.
+  // Uniform (ceil(len / h) equal parts) where the field is h all along;
+  // otherwise spaced so each part is one local size, computed from the
+  // lexicographically smaller end so that both sides of a shared piece get
+  // the same points.
+  std::vector<Vec3> divide(const Vec3& P, const Vec3& Q) const {
+    const double len = (Q - P).norm();
+    std::vector<Vec3> out;
+    if (!graded() || segment_distance(P, Q) >= (h_ - h0_) / grading_) {
+      const int pieces = std::max(1, static_cast<int>(std::ceil(len / h_ - 1e-6)));
+      for (int j = 0; j < pieces; ++j) out.push_back(P + (Q - P) * (static_cast<double>(j) / pieces));
+      return out;
+    }
+    const bool flip = std::lexicographical_compare(Q.data(), Q.data() + 3, P.data(), P.data() + 3);
+    const Vec3& A = flip ? Q : P;
+    const Vec3& B = flip ? P : Q;
+    // Element count along [A, B] as a function of the parameter: the integral of 1 / size.
+    std::vector<double> tau = {0.0}, count = {0.0};
+    while (tau.back() < 1.0) {
+      const double t0 = tau.back();
+      const double step = std::min(1.0 - t0, at(A + t0 * (B - A)) / (8.0 * len));
+      const double mid = at(A + (t0 + 0.5 * step) * (B - A));
+      tau.push_back(t0 + step >= 1.0 - 1e-12 ? 1.0 : t0 + step);
+      count.push_back(count.back() + step * len / mid);
+    }
+    const int pieces = std::max(1, static_cast<int>(std::ceil(count.back() - 1e-6)));
+    std::vector<Vec3> inner;
+    size_t i = 1;
+    for (int j = 1; j < pieces; ++j) {
+      const double target = count.back() * j / pieces;
+      while (count[i] < target) ++i;
+      const double w = (target - count[i - 1]) / (count[i] - count[i - 1]);
+      inner.push_back(A + (tau[i - 1] + w * (tau[i] - tau[i - 1])) * (B - A));
+    }
+    if (flip) std::reverse(inner.begin(), inner.end());
+    out.push_back(P);
+    out.insert(out.end(), inner.begin(), inner.end());
+    return out;
+  }
+
+ private:
+  double segment_distance(const Vec3& P, const Vec3& Q) const {
+    double d = std::numeric_limits<double>::infinity();
+    const Vec3 e = Q - P;
+    for (const Vec3& c : corners_) {
+      const double t = e.squaredNorm() > 0 ? std::clamp((c - P).dot(e) / e.squaredNorm(), 0.0, 1.0) : 0.0;
+      d = std::min(d, (P + t * e - c).norm());
+    }
+    return d;
+  }
+  double h_, h0_, grading_;
+  std::vector<Vec3> corners_;
+  std::vector<double> ring_radii_;
+};
+
+// Fold ends: a vertex of one polygon lying inside (not at an end of) an edge
+// of another, within `merge`. Each is listed once.
+std::vector<Vec3> find_fold_ends(const std::vector<std::vector<Vec3>>& snapped, double merge) {
+  std::vector<Vec3> out;
+  for (size_t k = 0; k < snapped.size(); ++k)
+    for (size_t i = 0; i < snapped[k].size(); ++i) {
+      const Vec3& a = snapped[k][i];
+      const Vec3& b = snapped[k][(i + 1) % snapped[k].size()];
+      const double len = (b - a).norm();
+      if (len <= merge) continue;
+      for (size_t j = 0; j < snapped.size(); ++j) {
+        if (j == k) continue;
+        for (const Vec3& q : snapped[j]) {
+          const double t = (q - a).dot(b - a) / (len * len);
+          if (t * len <= merge || (1 - t) * len <= merge || (a + t * (b - a) - q).norm() > merge) continue;
+          bool known = false;
+          for (const Vec3& o : out) known = known || (o - q).norm() <= merge;
+          if (!known) out.push_back(q);
+        }
+      }
+    }
+  return out;
+}
+
 }  // namespace
 
 double default_element_size(const std::vector<std::vector<Vec3>>& polygons, double thickness) {
@@ -181,6 +300,12 @@ PlateMesh mesh_plates(const std::vector<std::vector<Vec3>>& polygons, const std:
       snapped[k].push_back(rep ? *rep : v);
     }
 
+  double h0 = options.fold_end_element_size > 0 ? options.fold_end_element_size : 0.25 * options.thickness;
+  h0 = std::max(h0, 20 * merge);
+  const bool grade = options.grade_fold_ends && h0 < h && options.fold_end_grading > 0;
+  if (grade) out.fold_ends = find_fold_ends(snapped, merge);
+  const SizeField field(h, h0, options.fold_end_grading, out.fold_ends);
+
   for (size_t k = 0; k < polygons.size(); ++k) {
     const auto& poly = polygons[k];
     const PlaneFrame f = polygon_frame(poly, k, tol);
@@ -218,10 +343,8 @@ PlateMesh mesh_plates(const std::vector<std::vector<Vec3>>& polygons, const std:
       // The end point b must stay the last split (a neighbour's vertex within
       // `merge` of b was skipped above, so it cannot displace it).
       for (size_t s = 0; s + 1 < uniq.size(); ++s) {
-        const Vec3 P = uniq[s].second, Q = uniq[s + 1].second;
-        const int pieces = std::max(1, static_cast<int>(std::ceil((Q - P).norm() / h - 1e-6)));
-        for (int j = 0; j < pieces; ++j) {
-          pts3.push_back(P + (Q - P) * (static_cast<double>(j) / pieces));
+        for (const Vec3& p : field.divide(uniq[s].second, uniq[s + 1].second)) {
+          pts3.push_back(p);
           fixed_3d.push_back(1);
           tangent.push_back((poly2[(i + 1) % nv] - poly2[i]).normalized());
         }
@@ -241,8 +364,43 @@ PlateMesh mesh_plates(const std::vector<std::vector<Vec3>>& polygons, const std:
         fixed_3d.push_back(1);
         tangent.push_back(Vec2::Zero());
       }
+    // Around each fold end near this polygon's plane: rings of points spaced
+    // by the local size, each kept at least half its size from the boundary,
+    // the fixed points and the ring points before it. A ring of 3-D radius r
+    // around a corner at distance delta from the plane is a circle of radius
+    // sqrt(r^2 - delta^2) about the corner's foot.
+    std::vector<Vec2> graded2;
+    for (size_t c = 0; c < field.corners().size(); ++c) {
+      const Vec3& corner = field.corners()[c];
+      const double delta = std::abs((corner - f.origin).dot(f.ez));
+      const Vec2 foot = f.to2d(corner);
+      for (size_t ring = 0; ring < field.ring_radii().size(); ++ring) {
+        const double r = field.ring_radii()[ring];
+        if (r <= delta) continue;
+        const double rho = std::sqrt(r * r - delta * delta);
+        const int n = std::max(3, static_cast<int>(std::ceil(2 * kPi * rho / field.size_at_distance(r))));
+        for (int j = 0; j < n; ++j) {
+          const double angle = 2 * kPi * (j + 0.5 * (ring % 2)) / n;
+          const Vec2 q = foot + rho * Vec2(std::cos(angle), std::sin(angle));
+          const Vec3 q3 = f.to3d(q);
+          double d = 0;
+          if (field.nearest(q3, &d) != static_cast<int>(c)) continue;  // another corner's rings cover it
+          const double size = field.size_at_distance(d);
+          if (min_inside_distance(poly2, q) < 0.5 * size) continue;
+          bool crowded = false;
+          for (const Vec2& fp : fixed2) crowded = crowded || (fp - q).norm() < 0.5 * size;
+          for (const Vec2& gp : graded2) crowded = crowded || (gp - q).norm() < 0.5 * size;
+          if (crowded) continue;
+          graded2.push_back(q);
+          pts3.push_back(q3);
+          fixed_3d.push_back(1);
+          tangent.push_back(Vec2::Zero());
+        }
+      }
+    }
     // Interior: equilateral lattice of spacing h aligned with the longest
-    // edge, kept at least h/2 from the boundary and from fixed points.
+    // edge, kept at least h/2 from the boundary and from fixed points, and
+    // clear of the fold ends' rings.
     Vec2 lo = poly2[0], hi = poly2[0];
     for (const Vec2& q : poly2) {
       lo = lo.cwiseMin(q);
@@ -258,6 +416,11 @@ PlateMesh mesh_plates(const std::vector<std::vector<Vec3>>& polygons, const std:
         bool near_fixed = false;
         for (const Vec2& fp : fixed2) near_fixed = near_fixed || (fp - q).norm() < 0.5 * h;
         if (near_fixed) continue;
+        if (field.graded()) {
+          double d = 0;
+          field.nearest(f.to3d(q), &d);
+          if (d < field.lattice_distance()) continue;
+        }
         pts3.push_back(f.to3d(q));
         fixed_3d.push_back(0);
         tangent.push_back(Vec2::Zero());

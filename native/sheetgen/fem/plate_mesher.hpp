@@ -26,6 +26,15 @@ struct PlateMeshOptions {
   // Laplacian smoothing passes over the interior lattice points (each followed
   // by a re-triangulation); they even out the band next to the boundary.
   int smoothing_passes = 2;
+  // Graded refinement at fold ends (docs/fem.md "Graded fold ends"): where a
+  // polygon vertex lies inside another polygon's edge (a fold that ends
+  // inside its parent's edge, or a narrower flat extension) the outline has a
+  // re-entrant corner whose singular field the uniform mesh under-resolves
+  // (the part comes out stiff). Around such a point p the element size is
+  // min(h, fold_end_element_size + fold_end_grading * |x - p|).
+  bool grade_fold_ends = true;
+  double fold_end_element_size = 0;  // m, size at the corner; <= 0: t / 4
+  double fold_end_grading = 0.5;     // growth of the size per unit distance from the corner
 };
 
 struct PlateMesh {
@@ -33,6 +42,7 @@ struct PlateMesh {
   std::vector<int> element_polygon;              // #F, index of the polygon each triangle lies in
   std::vector<std::vector<int>> fixed_point_nodes;  // per polygon, the node of each requested fixed point
   double element_size = 0;                       // m, h used
+  std::vector<Vec3> fold_ends;                   // m, the graded corners (empty when grading is off)
 };
 
 // The default h of PlateMeshOptions for these polygons, m.

@@ -482,10 +482,13 @@ ShellResult ShellSolver::solve(const ShellModel& m, const ShellSolveOptions& opt
   std::vector<int> points;
   double rmax = 0;
   const double base_radius = options.stress_exclusion_thicknesses * m.material.thickness;
+  std::vector<double> radius(n_nodes, 0.0);  // m, exclusion radius of each singular point
+  for (int i : res.reentrant_corners) radius[i] = base_radius + std::max(node_size[i], options.reentrant_corner_clearance);
   for (int i = 0; i < n_nodes; ++i)
     if (singular[i] && node_size[i] > 0) {
       points.push_back(i);
-      rmax = std::max(rmax, base_radius + node_size[i]);
+      radius[i] = std::max(radius[i], base_radius + node_size[i]);
+      rmax = std::max(rmax, radius[i]);
     }
   if (!points.empty() && rmax > 0) {
     // Uniform hash grid of cell rmax: a centroid only needs its 27 neighbour cells.
@@ -503,8 +506,7 @@ ShellResult ShellSolver::solve(const ShellModel& m, const ShellSolveOptions& opt
             auto it = grid.find(key(centroid[e], dx, dy, dz));
             if (it == grid.end()) continue;
             for (int i : it->second) {
-              const double r = base_radius + node_size[i];
-              if ((centroid[e] - m.nodes[i]).squaredNorm() < r * r) {
+              if ((centroid[e] - m.nodes[i]).squaredNorm() < radius[i] * radius[i]) {
                 excluded = true;
                 break;
               }

@@ -96,6 +96,14 @@ struct ShellSolveOptions {
   // (180 deg, with round-off) and the ends of a fold over a whole edge
   // (90 + 90 deg) are not.
   double reentrant_corner_angle = 190.0 * M_PI / 180.0;
+  // m. At a re-entrant corner the radius is (stress_exclusion_thicknesses * t
+  // + max(h_p, this)): a sheet part's fold ends inside an edge have the bend
+  // (inside radius R) and a bend relief there, which the sharp-fold model
+  // does not have, so its field within about R of that corner is not the
+  // part's. analyse_part() sets it to the bend radius; 0 keeps h_p alone.
+  // It also keeps the rule from following the graded mesh at fold ends
+  // (docs/fem.md "Graded fold ends").
+  double reentrant_corner_clearance = 0;
   // A pivot smaller than this fraction of its diagonal entry means the model
   // is a mechanism (a rigid-body mode no support holds).
   double singular_pivot_ratio = 1e-9;

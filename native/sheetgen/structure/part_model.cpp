@@ -121,13 +121,19 @@ PartModel build_part_model(const Problem& problem, int load_index, const PlateGe
   return pm;
 }
 
+ShellSolveOptions part_solve_options(const Problem& problem, const ShellElementOptions& element) {
+  ShellSolveOptions so;
+  so.element = element;
+  so.safety_factor = problem.requirements.safety_factor;
+  so.reentrant_corner_clearance = problem.manufacturing.bend_radius;
+  return so;
+}
+
 StructuralResult analyse_part(const Problem& problem, int load_index, const PlateGeometry& geometry,
                               const PartModelOptions& options, ShellSolver* solver) {
   const auto start = std::chrono::steady_clock::now();
   const PartModel pm = build_part_model(problem, load_index, geometry, options);
-  ShellSolveOptions so;
-  so.element = options.element;
-  so.safety_factor = problem.requirements.safety_factor;
+  const ShellSolveOptions so = part_solve_options(problem, options.element);
   const ShellResult r = solver ? solver->solve(pm.model, so) : solve_shell(pm.model, so);
   StructuralResult s;
   s.compliance = r.compliance;

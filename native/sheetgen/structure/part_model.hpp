@@ -71,6 +71,10 @@ struct StructuralResult {
   double seconds = 0;           // build + solve
 };
 
+// The solve options analyse_part() uses for this problem: its safety factor,
+// its bend radius as the stress rule's clearance at fold ends, `element`.
+ShellSolveOptions part_solve_options(const Problem& problem, const ShellElementOptions& element = {});
+
 // Builds and solves. `solver` (optional) keeps symbolic factorisations between
 // calls (composition solves many similar parts); one solver per thread.
 StructuralResult analyse_part(const Problem& problem, int load_index, const PlateGeometry& geometry,

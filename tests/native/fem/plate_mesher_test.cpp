@@ -96,6 +96,7 @@ TEST(PlateMesher, TJunctionSharesEveryNodeOfTheSharedSegment) {
   const Poly child2 = {Vec3(0.06, 0, 0), Vec3(0.06, 0.04, 0), Vec3(0.06, 0.04, -0.025), Vec3(0.06, 0.0, -0.025)};
   PlateMeshOptions opt;
   opt.element_size = 0.0043;
+  opt.grade_fold_ends = false;  // uniform pieces, counted below; graded: TJunctionIsGradedAtBothFoldEnds
   const PlateMesh pm = mesh_plates({parent, child, child2}, {}, opt);
   EXPECT_NEAR(pm.mesh.area(), 0.06 * 0.04 + 0.025 * 0.03 + 0.04 * 0.025, 1e-12);
   int shared_edges = 0;
@@ -126,6 +127,43 @@ TEST(PlateMesher, TJunctionSharesEveryNodeOfTheSharedSegment) {
   // The split points (child corners) are nodes.
   EXPECT_EQ(nodes_on_segment(pm.mesh, child[0], child[0], 1e-9).size(), 1u);
   EXPECT_EQ(nodes_on_segment(pm.mesh, child[1], child[1], 1e-9).size(), 1u);
+}
+
+TEST(PlateMesher, TJunctionIsGradedAtBothFoldEnds) {
+  // The same T-junction, graded (the default): both ends of the child's root
+  // lie inside the parent's edge y = 40 and are found as fold ends; the full
+  // fold over x = 60 has none. Next to each the shared pieces are about the
+  // corner size h0 = t/4 = 0.4 mm and grow by about half their distance from
+  // it; the mesh stays conforming, and no triangle is a sliver.
+  const Poly parent = {Vec3(0, 0, 0), Vec3(0.06, 0, 0), Vec3(0.06, 0.04, 0), Vec3(0, 0.04, 0)};
+  const Poly child = {Vec3(0.045, 0.04, 0), Vec3(0.02, 0.04, 0), Vec3(0.02, 0.04, 0.03), Vec3(0.045, 0.04, 0.03)};
+  const Poly child2 = {Vec3(0.06, 0, 0), Vec3(0.06, 0.04, 0), Vec3(0.06, 0.04, -0.025), Vec3(0.06, 0.0, -0.025)};
+  PlateMeshOptions opt;
+  opt.element_size = 0.0043;
+  const PlateMesh pm = mesh_plates({parent, child, child2}, {}, opt);
+  ASSERT_EQ(pm.fold_ends.size(), 2u);
+  for (const Vec3& p : pm.fold_ends)
+    EXPECT_TRUE((p - child[0]).norm() < 1e-12 || (p - child[1]).norm() < 1e-12);
+  EXPECT_NEAR(pm.mesh.area(), 0.06 * 0.04 + 0.025 * 0.03 + 0.04 * 0.025, 1e-12);
+  std::vector<double> root_pieces;
+  for (const auto& [edge, polys] : edge_use(pm)) {
+    ASSERT_LE(polys.size(), 2u);
+    const Vec3 a = pm.mesh.vertices[edge.first], b = pm.mesh.vertices[edge.second];
+    if (polys.size() == 2 && polys[0] != polys[1] && on_segment(a, child[0], child[1]) && on_segment(b, child[0], child[1])) {
+      root_pieces.push_back((b - a).norm());
+      // Size rule: h0 + grading * distance of the piece's nearer end, to within
+      // the rounding of whole pieces (at most one piece's worth, a factor ~1.6).
+      const double d = std::min({(a - child[0]).norm(), (a - child[1]).norm(), (b - child[0]).norm(), (b - child[1]).norm()});
+      EXPECT_LT((b - a).norm(), 1.6 * std::min(0.0043, 0.4e-3 + 0.5 * d));
+    }
+  }
+  ASSERT_FALSE(root_pieces.empty());
+  const double smallest = *std::min_element(root_pieces.begin(), root_pieces.end());
+  std::printf("graded T-junction: %zu triangles, %zu pieces on the 25 mm root (uniform: 6), smallest %.3f mm, min angle %.1f deg\n",
+              pm.mesh.triangles.size(), root_pieces.size(), smallest * 1e3, min_angle_deg(pm));
+  EXPECT_GT(smallest, 0.3e-3);
+  EXPECT_LT(smallest, 0.6e-3);
+  EXPECT_GT(min_angle_deg(pm), 20.0);
 }
 
 // A child whose root corner sits 0.4 um beside the parent's corner (round-off
@@ -224,7 +262,10 @@ TEST(PlateMesher, SkewedTrapezoidTabsStayConformingAndWellShaped) {
       EXPECT_TRUE(on_segment(pm.mesh.vertices[edge.first], r0, r1) && on_segment(pm.mesh.vertices[edge.second], r0, r1));
     }
   }
-  EXPECT_EQ(shared, static_cast<int>(std::ceil(0.025 / pm.element_size - 1e-6)));
+  // Graded at both ends of the root (docs/fem.md "Graded fold ends"): more
+  // pieces than the uniform ceil(25 mm / h), every one shared.
+  EXPECT_GT(shared, static_cast<int>(std::ceil(0.025 / pm.element_size - 1e-6)));
+  EXPECT_EQ(pm.fold_ends.size(), 2u);
   const double angle = min_angle_deg(pm);
   std::printf("skewed tabs: %zu triangles, h = %.2f mm, min angle %.1f deg\n", pm.mesh.triangles.size(),
               pm.element_size * 1e3, angle);
