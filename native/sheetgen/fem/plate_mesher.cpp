@@ -168,20 +168,20 @@ class SizeField {
 
   // Points dividing the piece [P, Q] into elements: P first, Q left out.
   // Uniform (ceil(len / h) equal parts) where the field is h all along;
-  // otherwise spaced so each part is one local size, computed from the
-  // lexicographically smaller end so that both sides of a shared piece get
-  // the same points.
+  // otherwise spaced so each part is one local size. Both the choice and the
+  // spacing are computed from the lexicographically smaller end, so that the
+  // two sides of a shared piece get the same points even at round-off.
   std::vector<Vec3> divide(const Vec3& P, const Vec3& Q) const {
     const double len = (Q - P).norm();
+    const bool flip = std::lexicographical_compare(Q.data(), Q.data() + 3, P.data(), P.data() + 3);
+    const Vec3& A = flip ? Q : P;
+    const Vec3& B = flip ? P : Q;
     std::vector<Vec3> out;
-    if (!graded() || segment_distance(P, Q) >= (h_ - h0_) / grading_) {
+    if (!graded() || segment_distance(A, B) >= (h_ - h0_) / grading_) {
       const int pieces = std::max(1, static_cast<int>(std::ceil(len / h_ - 1e-6)));
       for (int j = 0; j < pieces; ++j) out.push_back(P + (Q - P) * (static_cast<double>(j) / pieces));
       return out;
     }
-    const bool flip = std::lexicographical_compare(Q.data(), Q.data() + 3, P.data(), P.data() + 3);
-    const Vec3& A = flip ? Q : P;
-    const Vec3& B = flip ? P : Q;
     // Element count along [A, B] as a function of the parameter: the integral of 1 / size.
     std::vector<double> tau = {0.0}, count = {0.0};
     while (tau.back() < 1.0) {
