@@ -87,13 +87,20 @@ TEST(PlateMesher, SingleRectangleIsAreaExactOrientedAndWellShaped) {
   EXPECT_GT(angle, 25.0);  // near-equilateral: an equilateral lattice with a smoothed boundary band
 }
 
+// Parent 60 x 40 mm in z = 0; child root edge = the sub-segment x in [20, 45]
+// of the parent's edge y = 40, bent 90 deg up to z = 30; a second child on
+// the full parent edge x = 60, bent down.
+Poly t_junction_parent() { return {Vec3(0, 0, 0), Vec3(0.06, 0, 0), Vec3(0.06, 0.04, 0), Vec3(0, 0.04, 0)}; }
+Poly t_junction_child() {
+  return {Vec3(0.045, 0.04, 0), Vec3(0.02, 0.04, 0), Vec3(0.02, 0.04, 0.03), Vec3(0.045, 0.04, 0.03)};
+}
+Poly t_junction_child2() {
+  return {Vec3(0.06, 0, 0), Vec3(0.06, 0.04, 0), Vec3(0.06, 0.04, -0.025), Vec3(0.06, 0.0, -0.025)};
+}
+
 TEST(PlateMesher, TJunctionSharesEveryNodeOfTheSharedSegment) {
-  // Parent 60 x 40 mm in z = 0; child root edge = the sub-segment x in [20, 45]
-  // of the parent's edge y = 40, bent 90 deg up to z = 30; a second child on
-  // the full parent edge x = 60, bent down. Edge lengths are not multiples of h.
-  const Poly parent = {Vec3(0, 0, 0), Vec3(0.06, 0, 0), Vec3(0.06, 0.04, 0), Vec3(0, 0.04, 0)};
-  const Poly child = {Vec3(0.045, 0.04, 0), Vec3(0.02, 0.04, 0), Vec3(0.02, 0.04, 0.03), Vec3(0.045, 0.04, 0.03)};
-  const Poly child2 = {Vec3(0.06, 0, 0), Vec3(0.06, 0.04, 0), Vec3(0.06, 0.04, -0.025), Vec3(0.06, 0.0, -0.025)};
+  // Edge lengths are not multiples of h.
+  const Poly parent = t_junction_parent(), child = t_junction_child(), child2 = t_junction_child2();
   PlateMeshOptions opt;
   opt.element_size = 0.0043;
   opt.grade_fold_ends = false;  // uniform pieces, counted below; graded: TJunctionIsGradedAtBothFoldEnds
@@ -135,9 +142,7 @@ TEST(PlateMesher, TJunctionIsGradedAtBothFoldEnds) {
   // fold over x = 60 has none. Next to each the shared pieces are about the
   // corner size h0 = t/4 = 0.4 mm and grow by about half their distance from
   // it; the mesh stays conforming, and no triangle is a sliver.
-  const Poly parent = {Vec3(0, 0, 0), Vec3(0.06, 0, 0), Vec3(0.06, 0.04, 0), Vec3(0, 0.04, 0)};
-  const Poly child = {Vec3(0.045, 0.04, 0), Vec3(0.02, 0.04, 0), Vec3(0.02, 0.04, 0.03), Vec3(0.045, 0.04, 0.03)};
-  const Poly child2 = {Vec3(0.06, 0, 0), Vec3(0.06, 0.04, 0), Vec3(0.06, 0.04, -0.025), Vec3(0.06, 0.0, -0.025)};
+  const Poly parent = t_junction_parent(), child = t_junction_child(), child2 = t_junction_child2();
   PlateMeshOptions opt;
   opt.element_size = 0.0043;
   const PlateMesh pm = mesh_plates({parent, child, child2}, {}, opt);
