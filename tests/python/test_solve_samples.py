@@ -24,10 +24,11 @@ SCENES = ["corner", "corner_obstacle", "slanted", "bulkhead_hole"]
 # and explained in docs/fem.md. For these scenes the check still fails on any
 # other failure line, and on a compliance gap larger than the bound given here;
 # it also fails when the scene passes (the entry must then be removed).
-# corner_obstacle: ours (DKMT) 0.17840 J, CalculiX S8R 0.19791 J (-9.9 %); 44 %
-# of the part's strain energy sits within 25 mm of one fold end inside the base
-# edge, where ours is still converging (docs/fem.md "Transverse shear").
-KNOWN_COMPLIANCE_GAPS = {"corner_obstacle": 0.12}
+# corner_obstacle: with graded fold ends ours 0.18955 J, CalculiX S8R 0.20099 J
+# (-5.7 %; uniform mesh -9.9 %). The rest does not close with refinement
+# (-5.5 % at h = 4 mm): the two models join plates at folds differently
+# (docs/fem.md "Graded fold ends").
+KNOWN_COMPLIANCE_GAPS = {"corner_obstacle": 0.07}
 
 
 def main():
