@@ -15,6 +15,8 @@ PACKAGES=(
   python3-dev pybind11-dev python3-numpy
   # runtime, reference and check tools
   blender calculix-ccx python3-ezdxf python3-shapely python3-matplotlib python3-pil
+  # the solid reference model of tests/python/solid_reference.py (OpenCASCADE + mesher)
+  python3-gmsh
   # screenshots of the Blender UI (scripts/make_screenshots.py)
   xvfb
   # fuzzing and sanitizers (clang + libFuzzer runtime)

@@ -8,7 +8,6 @@ Run: /usr/bin/python3 tests/python/test_solve_samples.py --sheetgen build/native
 """
 import argparse
 import os
-import re
 import subprocess
 import sys
 import tempfile
@@ -19,16 +18,6 @@ ROOT = os.path.dirname(os.path.dirname(HERE))
 # bulkhead_hole has a part only through the second search with web roots
 # (docs/discovery.md "Web roots"), so it checks that pass end to end.
 SCENES = ["corner", "corner_obstacle", "slanted", "bulkhead_hole"]
-
-# Known disagreements with CalculiX beyond verify_result's 5 %, each measured
-# and explained in docs/fem.md. For these scenes the check still fails on any
-# other failure line, and on a compliance gap larger than the bound given here;
-# it also fails when the scene passes (the entry must then be removed).
-# corner_obstacle: with graded fold ends ours 0.18955 J, CalculiX S8R 0.20099 J
-# (-5.7 %; uniform mesh -9.9 %). The rest does not close with refinement
-# (-5.5 % at h = 4 mm): the two models join plates at folds differently
-# (docs/fem.md "Graded fold ends").
-KNOWN_COMPLIANCE_GAPS = {"corner_obstacle": 0.07}
 
 
 def main():
@@ -52,21 +41,7 @@ def main():
         v = subprocess.run([sys.executable, os.path.join(HERE, "verify_result.py"), out, "--sheetgen", sheetgen],
                            capture_output=True, text=True)
         print(v.stdout.strip())
-        fails = [l for l in v.stdout.splitlines() if l.startswith("FAIL: ")]
-        bound = KNOWN_COMPLIANCE_GAPS.get(scene)
-        if bound is not None:
-            gaps = [re.search(r"compliance differs from CalculiX by ([-+0-9.]+) %", l) for l in fails]
-            known = bool(fails) and all(g and abs(float(g.group(1))) <= 100 * bound for g in gaps)
-            if v.returncode != 0 and known:
-                print("known gap (docs/fem.md): %s within the %.0f %% bound" % ("; ".join(fails), 100 * bound))
-                passed += 1
-            elif v.returncode == 0:
-                print("%s now agrees with CalculiX within 5 %%: remove it from KNOWN_COMPLIANCE_GAPS" % scene)
-                failed += 1
-            else:
-                print(v.stderr)
-                failed += 1
-        elif v.returncode == 0:
+        if v.returncode == 0:
             passed += 1
         else:
             print(v.stderr)
