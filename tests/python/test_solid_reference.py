@@ -108,6 +108,12 @@ class SolidReference(unittest.TestCase):
         self.assertLess(abs(C8 / C - 1), 0.015)
         self.assertTrue(beam_D < C < beam_EI)
 
+    def test_self_riveted_parts_are_refused(self):
+        # Fused plates would make two riveted sheets one: verify_result falls back to S8R.
+        part = {"tabs": [], "rivets": [], "self_rivets": [{"tabs": [1, 2]}]}
+        with self.assertRaises(solid_reference.SolidNotApplicable):
+            solid_reference.solid_compliance(part, "", self.tmp.name)
+
 
 if __name__ == "__main__":
     unittest.main()
