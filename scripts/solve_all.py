@@ -7,6 +7,7 @@ tests/python/verify_result.py and prints a table (issue 8).
     /usr/bin/python3 scripts/solve_all.py --scenes shelf,maze --chains 4 --iterations 200
     /usr/bin/python3 scripts/solve_all.py --no-solve           # re-verify and re-print existing outputs
     /usr/bin/python3 scripts/solve_all.py --no-verify          # solve only; verify later with --no-solve
+    /usr/bin/python3 scripts/solve_all.py --tabulate           # re-print the table from run.json and verify.log
 
 Writes out/<scene>/ (sheetgen's result.json and per-load folders, plus solve.log,
 verify.log and run.json with the wall time, exit code and verify status) and
@@ -100,6 +101,21 @@ def print_table(rows):
             print("no part: %s/%s: %s" % (r["run"], fl["load"], fl["reason"]))
 
 
+def verify_status_from_log(out_dir):
+    """The verify column as the checker's saved log (verify.log) gives it."""
+    path = os.path.join(out_dir, "verify.log")
+    if not os.path.exists(path):
+        return "not verified"
+    lines = open(path).read().splitlines()
+    n_parts = sum(p["status"] == "ok" for p in json.load(open(os.path.join(out_dir, "result.json")))["parts"])
+    if not lines or not lines[-1].startswith("verify_result:"):
+        return "FAIL (verify crashed)"
+    n_bad = len({l.split(":")[1].strip() for l in lines if l.startswith("FAIL:")})
+    if n_bad:
+        return "FAIL (%d of %d parts)" % (n_bad, n_parts)
+    return "ok (%d part%s)" % (n_parts, "" if n_parts == 1 else "s") if n_parts else "n/a (no part)"
+
+
 def main():
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("--out", default=os.path.join(ROOT, "out"), help="output root (default out/)")
@@ -113,6 +129,8 @@ def main():
     ap.add_argument("--no-ccx", action="store_true", help="pass --no-ccx to verify_result.py")
     ap.add_argument("--no-verify", action="store_true",
                     help="solve only (verify later with --no-solve; the bay's brute-force check takes ~20 min)")
+    ap.add_argument("--tabulate", action="store_true",
+                    help="neither solve nor verify: rebuild the table and summary.json from run.json and verify.log")
     ap.add_argument("--sheetgen", default=SHEETGEN)
     args = ap.parse_args()
     if args.quick:
@@ -136,7 +154,7 @@ def main():
         os.makedirs(out_dir, exist_ok=True)
         out_dir = os.path.realpath(out_dir)  # result.json's problem path is relative to the real folder
         meta_path = os.path.join(out_dir, "run.json")
-        if args.no_solve:
+        if args.no_solve or args.tabulate:
             meta = json.load(open(meta_path)) if os.path.exists(meta_path) else {"wall_s": None, "exit": None}
         else:
             cmd = [args.sheetgen, "solve", problem, "--out", out_dir, "--threads", str(args.threads)] + extra
@@ -163,19 +181,16 @@ def main():
             all_good = False
         elif args.no_verify:
             verify = "not verified"
+        elif args.tabulate:
+            verify = verify_status_from_log(out_dir)
+            all_good &= verify.startswith(("ok", "n/a"))
         else:
             vcmd = [sys.executable, VERIFY, out_dir, "--allow-no-part", "--sheetgen", args.sheetgen]
             if args.no_ccx:
                 vcmd.append("--no-ccx")
             v = subprocess.run(vcmd, stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True)
             open(os.path.join(out_dir, "verify.log"), "w").write(v.stdout)
-            res = json.load(open(os.path.join(out_dir, "result.json")))
-            n_parts = sum(p["status"] == "ok" for p in res["parts"])
-            if v.returncode == 0:
-                verify = "ok (%d part%s)" % (n_parts, "" if n_parts == 1 else "s") if n_parts else "n/a (no part)"
-            else:
-                n_bad = len({l.split(":")[1].strip() for l in v.stdout.splitlines() if l.startswith("FAIL:")})
-                verify = "FAIL (%d of %d parts)" % (n_bad, n_parts) if n_bad else "FAIL (verify crashed)"
+            verify = verify_status_from_log(out_dir)
             if v.returncode != 0:
                 all_good = False
                 for l in v.stdout.splitlines():

@@ -10,7 +10,7 @@ against CalculiX's own shells where those are reliable.
   at h = 1.2 mm) and lies between the beam formulas with E I (narrow) and
   D b (plane strain).
 
-Both run at the size verify_result.py uses (h = 1.5 t). Needs ccx and gmsh.
+Both run at the size verify_result.py uses (solid_reference.DEFAULT_SIZE). Needs ccx and gmsh.
 Run: /usr/bin/python3 -m unittest tests/python/test_solid_reference.py
 """
 import os
@@ -24,7 +24,7 @@ sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import solid_reference  # noqa: E402
 
 T, E, NU = 1.6e-3, 73.1e9, 0.33
-H = 1.5 * T
+H = solid_reference.DEFAULT_SIZE * T
 
 
 def rectangle(origin, du, dv, normal):
