@@ -125,7 +125,7 @@ def run_ccx(deck_path):
     return disp
 
 
-def _section_lines(text, keyword):
+def deck_section_lines(text, keyword):
     """Data lines after the line starting with `keyword`, up to the next keyword line."""
     m = re.search(r"^" + re.escape(keyword) + r".*$", text, re.M)
     if m is None:
@@ -176,24 +176,24 @@ def solid_compliance(part, shell_deck, work_dir, h=None):
         raise SolidNotApplicable("the part has self-rivets (two sheets face to face)")
     if len(re.findall(r"^\*RIGID BODY", shell_deck, re.M)) != 1:
         raise SolidNotApplicable("the deck has more than one rigid body")
-    E, nu = (float(x) for x in _section_lines(shell_deck, "*ELASTIC")[0].split(",")[:2])
-    t = float(_section_lines(shell_deck, "*SHELL SECTION")[0].split(",")[0])
+    E, nu = (float(x) for x in deck_section_lines(shell_deck, "*ELASTIC")[0].split(",")[:2])
+    t = float(deck_section_lines(shell_deck, "*SHELL SECTION")[0].split(",")[0])
     h = DEFAULT_SIZE * t if h is None else h
     nodes = {}
-    for line in _section_lines(shell_deck, "*NODE"):
+    for line in deck_section_lines(shell_deck, "*NODE"):
         a = line.split(",")
         nodes[int(a[0])] = np.array([float(x) for x in a[1:4]])
-    rigid_ids = [int(x) for line in _section_lines(shell_deck, "*NSET, NSET=RIGID1") for x in line.split(",") if x.strip()]
+    rigid_ids = [int(x) for line in deck_section_lines(shell_deck, "*NSET, NSET=RIGID1") for x in line.split(",") if x.strip()]
     ref_id = int(re.search(r"REF NODE=(\d+)", shell_deck).group(1))
     rot_id = int(re.search(r"ROT NODE=(\d+)", shell_deck).group(1))
     cloads = []
-    for line in _section_lines(shell_deck, "*CLOAD"):
+    for line in deck_section_lines(shell_deck, "*CLOAD"):
         n, dof, value = line.split(",")
         n, dof = int(n), int(dof)
         if n not in (ref_id, rot_id):
             raise SolidNotApplicable(f"a load on node {n}, not on the box's reference node")
         cloads.append((dof + (3 if n == rot_id and n != ref_id else 0), float(value)))
-    clamped = sorted({int(line.split(",")[0]) for line in _section_lines(shell_deck, "*BOUNDARY")})
+    clamped = sorted({int(line.split(",")[0]) for line in deck_section_lines(shell_deck, "*BOUNDARY")})
 
     tabs = part["tabs"]
     X, tets = mesh_plates(tabs, t, h)

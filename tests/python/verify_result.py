@@ -147,14 +147,6 @@ def distance_to_segment(P, a, b):
     return np.linalg.norm(P - (a + t[:, None] * ab), axis=1)
 
 
-def _deck_section(text, keyword):
-    """The data lines after the first line starting with `keyword` up to the next keyword line."""
-    start = text.index(keyword)
-    body = text[text.index("\n", start) + 1:]
-    end = body.find("\n*")
-    return body if end < 0 else body[:end + 1]
-
-
 def _quad_reentrant_corners(quads, X, min_angle):
     """Boundary nodes of a quad mesh whose corner angles add up to more than min_angle (rad)."""
     angle_sum = np.zeros(len(X))
@@ -203,7 +195,7 @@ def ccx_max_von_mises(deck, dat, t, corner_clearance=0.0):
     points, number of re-entrant corners).
     """
     ids, X = [], []
-    for line in _deck_section(deck, "*NODE").splitlines():
+    for line in solid_reference.deck_section_lines(deck, "*NODE"):
         p = line.split(",")
         if len(p) == 4:
             ids.append(int(p[0]))
@@ -211,14 +203,14 @@ def ccx_max_von_mises(deck, dat, t, corner_clearance=0.0):
     index = {n: i for i, n in enumerate(ids)}
     X = np.array(X)
     elem_ids, quads = [], []
-    for line in _deck_section(deck, "*ELEMENT").splitlines():
+    for line in solid_reference.deck_section_lines(deck, "*ELEMENT"):
         p = line.split(",")
         if len(p) == 5:
             elem_ids.append(int(p[0]))
             quads.append([index[int(v)] for v in p[1:]])
     quads = np.array(quads)
     singular = set()
-    for line in _deck_section(deck, "*BOUNDARY").splitlines():
+    for line in solid_reference.deck_section_lines(deck, "*BOUNDARY"):
         if line.strip():
             singular.add(index[int(line.split(",")[0])])
     for m in re.finditer(r"^\*NSET, NSET=(RIGID\d+)\s*$", deck, re.M):
