@@ -6,7 +6,7 @@
 #include <limits>
 #include <optional>
 
-#include "sheetgen/part/polygon_geometry.hpp"
+#include "sheetgen/core/polygon_geometry.hpp"
 #include "sheetgen/part/part.hpp"
 #include "sheetgen/part/validity.hpp"
 

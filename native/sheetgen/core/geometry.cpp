@@ -18,6 +18,16 @@ Vec3 closest_point_on_segment(const Vec3& p, const Vec3& a, const Vec3& b) {
 // (the classic barycentric formulation; each branch is one feature region).
 Vec3 closest_point_on_triangle(const Vec3& p, const Vec3& a, const Vec3& b, const Vec3& c) {
   const Vec3 ab = b - a, ac = c - a, ap = p - a;
+  // A (near-)degenerate triangle first: with collinear corners the region
+  // tests below see products that cancel to rounding noise, and may pick a
+  // sub-edge (a to c) when the point is nearest to the rest of the line.
+  const double scale = std::max({ab.squaredNorm(), ac.squaredNorm(), (c - b).squaredNorm()});
+  if (!(ab.cross(ac).norm() > 1e-12 * scale)) {
+    Vec3 best = closest_point_on_segment(p, a, b);
+    for (const Vec3& q : {closest_point_on_segment(p, b, c), closest_point_on_segment(p, c, a)})
+      if ((q - p).squaredNorm() < (best - p).squaredNorm()) best = q;
+    return best;
+  }
   const double d1 = ab.dot(ap), d2 = ac.dot(ap);
   if (d1 <= 0 && d2 <= 0) return a;
   const Vec3 bp = p - b;
@@ -57,11 +67,11 @@ double point_triangle_distance(const Vec3& p, const Vec3& a, const Vec3& b, cons
   return (closest_point_on_triangle(p, a, b, c) - p).norm();
 }
 
-double segment_segment_distance(const Vec3& p0, const Vec3& p1, const Vec3& q0, const Vec3& q1) {
+SegmentPair segment_segment_closest(const Vec3& p0, const Vec3& p1, const Vec3& q0, const Vec3& q1) {
   const Vec3 d1 = p1 - p0, d2 = q1 - q0, r = p0 - q0;
   const double a = d1.squaredNorm(), e = d2.squaredNorm(), f = d2.dot(r);
   double s = 0, t = 0;
-  if (a <= 0 && e <= 0) return r.norm();
+  if (a <= 0 && e <= 0) return {p0, q0};
   if (a <= 0) {
     t = std::clamp(f / e, 0.0, 1.0);
   } else {
@@ -81,7 +91,12 @@ double segment_segment_distance(const Vec3& p0, const Vec3& p1, const Vec3& q0, 
       }
     }
   }
-  return ((p0 + s * d1) - (q0 + t * d2)).norm();
+  return {p0 + s * d1, q0 + t * d2};
+}
+
+double segment_segment_distance(const Vec3& p0, const Vec3& p1, const Vec3& q0, const Vec3& q1) {
+  const SegmentPair c = segment_segment_closest(p0, p1, q0, q1);
+  return (c.on_first - c.on_second).norm();
 }
 
 std::optional<double> ray_triangle_intersect(const Vec3& o, const Vec3& d, const Vec3& a, const Vec3& b,

@@ -15,6 +15,11 @@ double point_triangle_distance(const Vec3& p, const Vec3& a, const Vec3& b, cons
 // Closest point to p on the segment [a, b].
 Vec3 closest_point_on_segment(const Vec3& p, const Vec3& a, const Vec3& b);
 
+// Closest points of segments [p0,p1] and [q0,q1] (one pair when they are parallel).
+struct SegmentPair {
+  Vec3 on_first, on_second;
+};
+SegmentPair segment_segment_closest(const Vec3& p0, const Vec3& p1, const Vec3& q0, const Vec3& q1);
 // Distance between segments [p0,p1] and [q0,q1], m.
 double segment_segment_distance(const Vec3& p0, const Vec3& p1, const Vec3& q0, const Vec3& q1);
 

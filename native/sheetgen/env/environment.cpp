@@ -1,11 +1,14 @@
 #include "sheetgen/env/environment.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
 
 #include "sheetgen/env/distance_field.hpp"
 #include "sheetgen/env/ray_caster.hpp"
+#include "sheetgen/env/triangle_bvh.hpp"
+#include "sheetgen/core/polygon_geometry.hpp"
 
 namespace sheetgen {
 
@@ -107,6 +110,25 @@ Environment::Environment(const Problem& problem, const EnvironmentOptions& optio
   for (const auto& b : boxes) geoms.push_back(&b);
   rays_ = std::make_unique<RayCaster>(geoms);
   for (const auto& m : problem_.meshes) mesh_closed_.push_back(m.mesh.is_closed() ? 1 : 0);
+
+  std::vector<std::array<Vec3, 3>> tris;
+  for (size_t m = 0; m < problem_.meshes.size(); ++m) {
+    const TriangleMesh& mesh = problem_.meshes[m].mesh;
+    for (size_t f = 0; f < mesh.triangles.size(); ++f) {
+      const auto& t = mesh.triangles[f];
+      tris.push_back({mesh.vertices[t[0]], mesh.vertices[t[1]], mesh.vertices[t[2]]});
+      triangle_rivet_area_.push_back(face_rivet_area_[m][f]);
+      triangle_load_.push_back(-1);
+    }
+  }
+  for (size_t l = 0; l < boxes.size(); ++l)
+    for (const auto& t : boxes[l].triangles) {
+      tris.push_back({boxes[l].vertices[t[0]], boxes[l].vertices[t[1]], boxes[l].vertices[t[2]]});
+      triangle_rivet_area_.push_back(-1);
+      triangle_load_.push_back(static_cast<int>(l));
+    }
+  triangles_ = std::make_unique<TriangleBvh>(std::move(tris));
+  exact_contact_max_triangles_ = options.exact_contact_max_triangles;
 }
 
 bool Environment::inside_closed_obstacle(const Vec3& p) const {
@@ -225,8 +247,69 @@ std::optional<RayHit> Environment::cast_ray(const Vec3& origin, const Vec3& dire
   return hit;
 }
 
+std::optional<ContactResult> Environment::exact_polygon_contact(const std::vector<Vec3>& polygon, double required,
+                                                              const AllowedContacts& allowed) const {
+  if (exact_contact_max_triangles_ <= 0) return std::nullopt;
+  const size_t m = polygon.size();
+  Vec3 normal = Vec3::Zero();  // Newell's normal
+  for (size_t k = 0; k < m; ++k) normal += polygon[k].cross(polygon[(k + 1) % m]);
+  const double len = normal.norm();
+  if (!(len > 0)) return std::nullopt;
+  normal /= len;
+  // A triangle whose box misses the polygon's box grown by `required` is
+  // farther than `required` along some axis, so farther in space.
+  BoundingBox near;
+  for (const Vec3& p : polygon) near.extend(p);
+  near.min.array() -= required;
+  near.max.array() += required;
+  thread_local std::vector<int> candidates;
+  candidates.clear();
+  if (!triangles_->overlapping(near, candidates, exact_contact_max_triangles_)) return std::nullopt;
+
+  ContactResult result;
+  result.exact = true;
+  result.min_clearance = required;  // nothing outside the candidates is nearer
+  result.worst_point = polygon.front();
+  thread_local std::vector<Vec3> corners(3);
+  for (int c : candidates) {
+    const int load = triangle_load_[c], ra = triangle_rivet_area_[c];
+    if (load >= 0 ? contains(allowed.loads, load) : (ra >= 0 && contains(allowed.rivet_areas, ra))) continue;
+    const auto& tri = triangles_->triangle(c);
+    corners.assign(tri.begin(), tri.end());
+    Vec3 tn = (tri[1] - tri[0]).cross(tri[2] - tri[0]);
+    const double scale = std::max({(tri[1] - tri[0]).squaredNorm(), (tri[2] - tri[0]).squaredNorm(), (tri[2] - tri[1]).squaredNorm()});
+    const double area2 = tn.norm();
+    tn = area2 > 1e-12 * scale ? Vec3(tn / area2) : Vec3::Zero();  // a sliver counts by its edges
+    const PolygonPair pair = convex_polygon_closest(polygon, normal, corners, tn, required);
+    ++result.samples;
+    if (pair.distance < result.min_clearance) {
+      result.min_clearance = pair.distance;
+      result.worst_point = pair.on_a;
+    }
+    if (pair.distance < required) {
+      result.clear = false;
+      return result;
+    }
+  }
+  // A polygon wholly inside a load box meets none of its faces.
+  for (int l = 0; l < static_cast<int>(load_boxes_.size()); ++l) {
+    if (contains(allowed.loads, l)) continue;
+    const double d = load_boxes_[l].signed_distance(polygon.front());
+    if (d < 0) {
+      result.clear = false;
+      result.min_clearance = d;
+      result.worst_point = polygon.front();
+      return result;
+    }
+  }
+  result.clear = true;
+  return result;
+}
+
 ContactResult Environment::polygon_contact(const std::vector<Vec3>& polygon, double required, const AllowedContacts& allowed,
                                            double sample_spacing) const {
+  if (polygon.size() >= 3)
+    if (auto exact = exact_polygon_contact(polygon, required, allowed)) return *exact;
   ContactResult result;
   result.min_clearance = std::numeric_limits<double>::infinity();
   if (polygon.size() < 3) {

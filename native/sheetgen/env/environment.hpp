@@ -13,11 +13,17 @@ namespace sheetgen {
 
 class DistanceField;
 class RayCaster;
+class TriangleBvh;
 
 struct EnvironmentOptions {
   double voxel_size = 0;  // m; 0 = auto: clamp(t, diag/4096, diag/256), see docs/environment.md
   int band_voxels = 0;    // half-width of the narrow band, voxels; 0 = auto (clearance need + 3)
   const std::atomic<bool>* cancel = nullptr;  // set during the build -> the constructor throws Cancelled
+  // polygon_contact measures a tab's clearance exactly (polygon against every
+  // triangle near it) when at most this many triangles come near its box;
+  // beyond, it samples the distance fields (docs/environment.md "Exact tab
+  // clearance"). 0: always sample.
+  int exact_contact_max_triangles = 4096;
 };
 
 // Obstacles a polygon may touch without counting as a collision: its own rivet
@@ -41,7 +47,8 @@ struct ContactResult {
   bool clear = true;          // every point keeps >= required clearance from non-allowed obstacles
   double min_clearance = 0;   // m, smallest clearance found on the polygon (lower bound where clear)
   Vec3 worst_point = Vec3::Zero();
-  int samples = 0;            // field queries spent
+  int samples = 0;            // field queries spent (sampled), or triangles measured (exact)
+  bool exact = false;         // measured against the triangles, not sampled on the fields
 };
 
 class Environment {
@@ -79,13 +86,18 @@ class Environment {
   // First obstacle hit along the ray o + s d, 0 < s <= max_distance (d need not be unit).
   std::optional<RayHit> cast_ray(const Vec3& origin, const Vec3& direction, double max_distance) const;
 
-  // Is a planar polygon (a tab's mid-surface, m) at least `required` m from every
-  // obstacle except the allowed contacts? Conservative to `sample_spacing` (m, 0 = voxel/2).
+  // Is a planar convex polygon (a tab's mid-surface, m) at least `required` m from
+  // every obstacle except the allowed contacts? Exact where few triangles come
+  // near it (EnvironmentOptions::exact_contact_max_triangles); else sampled on
+  // the distance fields, conservative to `sample_spacing` (m, 0 = voxel/2).
   ContactResult polygon_contact(const std::vector<Vec3>& polygon, double required,
                                 const AllowedContacts& allowed, double sample_spacing = 0) const;
 
  private:
   double distance_excluding(const Vec3& p, const AllowedContacts& allowed) const;
+  // The exact test, or nothing when too many triangles come near the polygon.
+  std::optional<ContactResult> exact_polygon_contact(const std::vector<Vec3>& polygon, double required,
+                                                     const AllowedContacts& allowed) const;
 
   Problem problem_;
   std::unique_ptr<DistanceField> obstacles_;                  // environment faces that are not rivet areas
@@ -106,6 +118,11 @@ class Environment {
   std::unique_ptr<RayCaster> rays_;
   std::vector<std::vector<int>> face_rivet_area_;  // [mesh][face] -> rivet area or -1
   std::vector<char> mesh_closed_;                    // per environment mesh: watertight
+  // Every environment face and every load box's faces, for the exact contact
+  // test; per triangle its rivet area and its load (-1 when none).
+  std::unique_ptr<TriangleBvh> triangles_;
+  std::vector<int> triangle_rivet_area_, triangle_load_;
+  int exact_contact_max_triangles_ = 4096;
 };
 
 }  // namespace sheetgen

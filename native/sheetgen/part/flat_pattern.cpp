@@ -7,7 +7,7 @@
 #include <functional>
 
 #include "sheetgen/core/geometry.hpp"
-#include "sheetgen/part/polygon_geometry.hpp"
+#include "sheetgen/core/polygon_geometry.hpp"
 
 namespace sheetgen {
 

@@ -5,7 +5,7 @@
 #include <cstdio>
 #include <limits>
 
-#include "sheetgen/part/polygon_geometry.hpp"
+#include "sheetgen/core/polygon_geometry.hpp"
 
 namespace sheetgen {
 

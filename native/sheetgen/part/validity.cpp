@@ -4,7 +4,7 @@
 #include <cstdio>
 
 #include "sheetgen/env/environment.hpp"
-#include "sheetgen/part/polygon_geometry.hpp"
+#include "sheetgen/core/polygon_geometry.hpp"
 #include "sheetgen/part/rivet_flange.hpp"
 
 namespace sheetgen {

@@ -7,7 +7,7 @@
 #include "sheet_rules.hpp"
 
 #include "sheetgen/env/environment.hpp"
-#include "sheetgen/part/polygon_geometry.hpp"
+#include "sheetgen/core/polygon_geometry.hpp"
 #include "sheetgen/part/validity.hpp"
 #include "sheetgen/structure/part_model.hpp"
 

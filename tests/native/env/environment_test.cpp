@@ -85,7 +85,9 @@ TEST(Environment, ManyRotatedBoxesGiveTheExactNearestBoxDistance) {
     if (env.rivet_area_distance(0, q) < all) continue;
     ASSERT_NEAR(env.clearance(q), all, 1e-12) << i;
     ++checked;
-    if (env.rivet_area_distance(0, q) >= some) ASSERT_NEAR(env.clearance(q, allowed), some, 1e-12) << i;
+    if (env.rivet_area_distance(0, q) >= some) {
+      ASSERT_NEAR(env.clearance(q, allowed), some, 1e-12) << i;
+    }
   }
   std::printf("rotated boxes: %d of 4000 points checked\n", checked);
   EXPECT_GT(checked, 2000);

@@ -10,7 +10,7 @@
 #include "sheetgen/part/bend_sequence.hpp"
 #include "sheetgen/part/exports.hpp"
 #include "sheetgen/part/flat_pattern.hpp"
-#include "sheetgen/part/polygon_geometry.hpp"
+#include "sheetgen/core/polygon_geometry.hpp"
 #include "../common/sheet_fixture.hpp"
 
 namespace sheetgen {

@@ -6,7 +6,7 @@
 #include <cmath>
 
 #include "sheetgen/part/flat_pattern.hpp"
-#include "sheetgen/part/polygon_geometry.hpp"
+#include "sheetgen/core/polygon_geometry.hpp"
 #include "../common/sheet_fixture.hpp"
 
 namespace sheetgen {

@@ -1,8 +1,9 @@
-#include "sheetgen/part/polygon_geometry.hpp"
+#include "sheetgen/core/polygon_geometry.hpp"
 
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <optional>
 
 #include "sheetgen/core/geometry.hpp"
 
@@ -108,58 +109,82 @@ bool point_in_convex(const Vec2& p, const std::vector<Vec2>& k, double tol) {
   return true;
 }
 
-double point_convex_polygon_distance(const Vec3& p, const std::vector<Vec3>& poly, const Vec3& n) {
+Vec3 closest_point_on_convex_polygon(const Vec3& p, const std::vector<Vec3>& poly, const Vec3& n) {
   const size_t m = poly.size();
-  const double h = (p - poly[0]).dot(n);
-  const Vec3 q = p - h * n;  // projection onto the plane
+  const Vec3 q = p - (p - poly[0]).dot(n) * n;  // projection onto the plane
   bool inside = true;
   for (size_t i = 0; i < m && inside; ++i)
     if ((poly[(i + 1) % m] - poly[i]).cross(q - poly[i]).dot(n) < 0) inside = false;
-  if (inside) return std::abs(h);
-  double best = std::numeric_limits<double>::infinity();
-  for (size_t i = 0; i < m; ++i) best = std::min(best, (closest_point_on_segment(p, poly[i], poly[(i + 1) % m]) - p).norm());
+  if (inside) return q;
+  Vec3 best = poly[0];
+  double best_d = std::numeric_limits<double>::infinity();
+  for (size_t i = 0; i < m; ++i) {
+    const Vec3 c = closest_point_on_segment(p, poly[i], poly[(i + 1) % m]);
+    const double d = (c - p).squaredNorm();
+    if (d < best_d) {
+      best_d = d;
+      best = c;
+    }
+  }
   return best;
+}
+
+double point_convex_polygon_distance(const Vec3& p, const std::vector<Vec3>& poly, const Vec3& n) {
+  return (closest_point_on_convex_polygon(p, poly, n) - p).norm();
 }
 
 namespace {
-// Does segment [a, b] cross (or touch) the convex polygon?
-bool segment_hits_polygon(const Vec3& a, const Vec3& b, const std::vector<Vec3>& poly, const Vec3& n) {
+// Where segment [a, b] crosses (or touches) the convex polygon, if it does.
+std::optional<Vec3> segment_polygon_crossing(const Vec3& a, const Vec3& b, const std::vector<Vec3>& poly, const Vec3& n) {
   const double ha = (a - poly[0]).dot(n), hb = (b - poly[0]).dot(n);
-  if ((ha > 0 && hb > 0) || (ha < 0 && hb < 0)) return false;
-  if (ha == hb) return false;  // in-plane: edge/edge and vertex tests cover it
+  if ((ha > 0 && hb > 0) || (ha < 0 && hb < 0)) return std::nullopt;
+  if (ha == hb) return std::nullopt;  // in-plane: edge/edge and vertex tests cover it
   const Vec3 q = a + (ha / (ha - hb)) * (b - a);
   const size_t m = poly.size();
   for (size_t i = 0; i < m; ++i)
-    if ((poly[(i + 1) % m] - poly[i]).cross(q - poly[i]).dot(n) < 0) return false;
-  return true;
+    if ((poly[(i + 1) % m] - poly[i]).cross(q - poly[i]).dot(n) < 0) return std::nullopt;
+  return q;
 }
 }  // namespace
 
-double convex_polygon_distance(const std::vector<Vec3>& a, const Vec3& na, const std::vector<Vec3>& b, const Vec3& nb,
-                               double stop_below) {
+PolygonPair convex_polygon_closest(const std::vector<Vec3>& a, const Vec3& na, const std::vector<Vec3>& b, const Vec3& nb,
+                                   double stop_below) {
   const size_t ma = a.size(), mb = b.size();
+  // A zero normal marks a polygon without area (a degenerate mesh triangle):
+  // its points are all on its edges, so only the edge tests apply to it.
+  const bool a_has_face = na.squaredNorm() > 0.25, b_has_face = nb.squaredNorm() > 0.25;
   // Crossing: for convex planar polygons in general position, one polygon's
   // boundary pierces the other where they intersect.
-  for (size_t i = 0; i < ma; ++i)
-    if (segment_hits_polygon(a[i], a[(i + 1) % ma], b, nb)) return 0.0;
-  for (size_t j = 0; j < mb; ++j)
-    if (segment_hits_polygon(b[j], b[(j + 1) % mb], a, na)) return 0.0;
-  double best = std::numeric_limits<double>::infinity();
+  if (b_has_face)
+    for (size_t i = 0; i < ma; ++i)
+      if (auto q = segment_polygon_crossing(a[i], a[(i + 1) % ma], b, nb)) return {0.0, *q};
+  if (a_has_face)
+    for (size_t j = 0; j < mb; ++j)
+      if (auto q = segment_polygon_crossing(b[j], b[(j + 1) % mb], a, na)) return {0.0, *q};
+  PolygonPair best{std::numeric_limits<double>::infinity(), a.front()};
+  auto consider = [&](const Vec3& on_a, const Vec3& on_b) {
+    const double d = (on_a - on_b).norm();
+    if (d < best.distance) best = {d, on_a};
+    return best.distance < stop_below;
+  };
   // Closest pair: edge-edge, or a vertex against the other polygon's face.
-  for (size_t i = 0; i < ma; ++i) {
-    best = std::min(best, point_convex_polygon_distance(a[i], b, nb));
-    if (best < stop_below) return best;
-  }
-  for (size_t j = 0; j < mb; ++j) {
-    best = std::min(best, point_convex_polygon_distance(b[j], a, na));
-    if (best < stop_below) return best;
-  }
+  if (b_has_face)
+    for (size_t i = 0; i < ma; ++i)
+      if (consider(a[i], closest_point_on_convex_polygon(a[i], b, nb))) return best;
+  if (a_has_face)
+    for (size_t j = 0; j < mb; ++j)
+      if (consider(closest_point_on_convex_polygon(b[j], a, na), b[j])) return best;
   for (size_t i = 0; i < ma; ++i)
     for (size_t j = 0; j < mb; ++j) {
-      best = std::min(best, segment_segment_distance(a[i], a[(i + 1) % ma], b[j], b[(j + 1) % mb]));
-      if (best < stop_below) return best;
+      const SegmentPair c = segment_segment_closest(a[i], a[(i + 1) % ma], b[j], b[(j + 1) % mb]);
+      if (consider(c.on_first, c.on_second)) return best;
     }
   return best;
+}
+
+double convex_polygon_distance(const std::vector<Vec3>& a, const Vec3& na, const std::vector<Vec3>& b, const Vec3& nb,
+                               double stop_below) {
+  return convex_polygon_closest(a, na, b, nb, stop_below).distance;
 }
 
 }  // namespace sheetgen
