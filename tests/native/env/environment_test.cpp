@@ -20,11 +20,7 @@ Problem floor_problem() {
   RivetAreaSpec ra;
   ra.name = "centre";
   ra.mesh = 0;
-  for (int j = 4; j < 8; ++j)
-    for (int i = 4; i < 8; ++i) {
-      ra.faces.push_back(2 * (j * 12 + i));
-      ra.faces.push_back(2 * (j * 12 + i) + 1);
-    }
+  ra.faces = testing::plane_cell_block(12, 4, 8);
   p.rivet_areas.push_back(ra);
   Load l;
   l.name = "box";

@@ -61,15 +61,7 @@ Problem scene() {
   p.source = "<test>";
   p.meshes.push_back({"floor", testing::plane(Vec3::Zero(), Vec3::UnitZ(), 0.6, 12), "<inline>"});
   p.meshes.push_back({"sphere", testing::icosphere(0.08, 2, Vec3(-0.15, 0.1, 0.1)), "<inline>"});
-  RivetAreaSpec ra;
-  ra.name = "centre";
-  ra.mesh = 0;
-  for (int j = 4; j < 8; ++j)
-    for (int i = 4; i < 8; ++i) {
-      ra.faces.push_back(2 * (j * 12 + i));
-      ra.faces.push_back(2 * (j * 12 + i) + 1);
-    }
-  p.rivet_areas.push_back(ra);
+  p.rivet_areas.push_back({"centre", 0, testing::plane_cell_block(12, 4, 8)});
   Load l;
   l.name = "box";
   l.center = Vec3(0.15, 0.1, 0.15);

@@ -68,6 +68,17 @@ inline Vec3 random_surface_point(const TriangleMesh& m, std::mt19937_64& rng) {
   return m.vertices[t[0]] + a * (m.vertices[t[1]] - m.vertices[t[0]]) + b * (m.vertices[t[2]] - m.vertices[t[0]]);
 }
 
+// Faces of plane(..., cells) in the block of cells [from, to) x [from, to) (two triangles per cell).
+inline std::vector<int> plane_cell_block(int cells, int from, int to) {
+  std::vector<int> faces;
+  for (int j = from; j < to; ++j)
+    for (int i = from; i < to; ++i) {
+      faces.push_back(2 * (j * cells + i));
+      faces.push_back(2 * (j * cells + i) + 1);
+    }
+  return faces;
+}
+
 inline Vec3 random_unit(std::mt19937_64& rng) {
   std::normal_distribution<double> n(0.0, 1.0);
   Vec3 v(n(rng), n(rng), n(rng));
