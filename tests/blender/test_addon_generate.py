@@ -1,6 +1,7 @@
 """Generate in Blender: the operator's execute(), the results in the scene, cancel, errors, the batch command.
 
-Small searches (chains 4, iterations 300) on sample_scenes/corner: about 10 s each here.
+Small searches (chains 6, iterations 300) on sample_scenes/corner: about 10 s each here.
+(4 x 300 found no valid part for seed 1 after the exact tab clearance of session 12.)
 """
 import json
 import os
@@ -19,7 +20,7 @@ from test_addon_support import ROOT, clean_scene, enable_addon, mesh_object, mak
 CORNER = os.path.join(ROOT, "sample_scenes", "corner")
 
 
-def import_corner(chains=4, iterations=300, seed=1):
+def import_corner(chains=6, iterations=300, seed=1):
     clean_scene()
     assert bpy.ops.sheetgen.import_problem(filepath=os.path.join(CORNER, "problem.json")) == {'FINISHED'}
     s = bpy.context.scene.sheetgen
@@ -203,7 +204,7 @@ class Batch(unittest.TestCase):
         with tempfile.TemporaryDirectory() as out:
             cmd = [bpy.app.binary_path, "-b", os.path.join(CORNER, "scene.blend"), "--python-exit-code", "1",
                    "--python", os.path.join(ROOT, "scripts", "blender_batch.py"), "--",
-                   "--out", out, "--render", "--chains", "4", "--iterations", "300", "--samples", "8",
+                   "--out", out, "--render", "--chains", "6", "--iterations", "300", "--samples", "8",
                    "--build-dir", build_dir]
             p = subprocess.run(cmd, stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True, timeout=600)
             self.assertEqual(p.returncode, 0, p.stdout[-3000:])
@@ -213,7 +214,7 @@ class Batch(unittest.TestCase):
                 doc = json.load(f)
             self.assertEqual(doc["problem"], "problem.json")
             self.assertEqual([(q["load"], q["status"]) for q in doc["parts"]], [("avionics_box", "ok")])
-            self.assertEqual(doc["search"]["chains"], 4)
+            self.assertEqual(doc["search"]["chains"], 6)
             self.assertEqual(doc["search"]["iterations"], 300)
             for name in ("problem.json", "avionics_box/flat.dxf", "avionics_box/bends.csv", "scene.blend"):
                 self.assertTrue(os.path.getsize(os.path.join(out, name)) > 0, name)
