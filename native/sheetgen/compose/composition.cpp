@@ -65,9 +65,10 @@ std::string percent(double x) {
 }  // namespace
 
 Candidate evaluate_part(const Problem& problem, const Environment& env, int load_index, Candidate c, double element_size,
-                        double bend_cost, ShellSolver* solver) {
+                        double bend_cost, ShellSolver* solver, double cost_bound) {
   c.geometry_ok = false;
   c.analysed = false;
+  c.over_cost_bound = false;
   c.fem_error.clear();
   c.reason = ValidityReason::Ok;
   c.message.clear();
@@ -91,6 +92,10 @@ Candidate evaluate_part(const Problem& problem, const Environment& env, int load
     return c;
   }
   c.geometry_ok = true;
+  if (c.cost >= cost_bound) {
+    c.over_cost_bound = true;
+    return c;
+  }
   try {
     PartModelOptions mo;
     mo.element_size = element_size;
@@ -105,12 +110,12 @@ Candidate evaluate_part(const Problem& problem, const Environment& env, int load
 
 Candidate evaluate_candidate(const Problem& problem, const Environment& env, int load_index, const Part& base,
                              const SegmentLibrary& library, std::vector<int> segments, double element_size,
-                             double bend_cost, ShellSolver* solver) {
+                             double bend_cost, ShellSolver* solver, double cost_bound) {
   Candidate c;
   std::sort(segments.begin(), segments.end());
   c.segments = segments;
   c.part = assemble_part(base, library, segments);
-  return evaluate_part(problem, env, load_index, std::move(c), element_size, bend_cost, solver);
+  return evaluate_part(problem, env, load_index, std::move(c), element_size, bend_cost, solver, cost_bound);
 }
 
 namespace {
@@ -167,7 +172,20 @@ ComposeResult compose_part(const Problem& problem, const Environment& env, int l
   tbb::task_arena arena(threads);
   tbb::enumerable_thread_specific<ShellSolver> solvers;
 
+  // The cost bound (ComposeOptions::kept_valid): the cost of the kept_valid-th
+  // cheapest valid part so far. Fixed for each parallel batch, so the result
+  // does not depend on the thread count.
+  auto cost_bound = [&] {
+    const size_t k = static_cast<size_t>(std::max(0, options.kept_valid));
+    if (k == 0 || result.valid.size() < k) return std::numeric_limits<double>::infinity();
+    std::vector<double> costs;
+    for (const Candidate& v : result.valid) costs.push_back(v.cost);
+    std::nth_element(costs.begin(), costs.begin() + (k - 1), costs.end());
+    return costs[k - 1];
+  };
+
   auto evaluate = [&](const std::vector<std::vector<int>>& subsets) {
+    const double bound = cost_bound();
     std::vector<Candidate> out(subsets.size());
     arena.execute([&] {
       tbb::parallel_for(size_t(0), subsets.size(), [&](size_t i) {
@@ -183,13 +201,15 @@ ComposeResult compose_part(const Problem& problem, const Environment& env, int l
           for (const auto& t : realise(probe).tabs) polys.push_back(t.corners);
           h = 1.5 * default_element_size(polys, problem.material.thickness);
         }
-        out[i] = evaluate_candidate(problem, env, load_index, base, library, subsets[i], h, options.bend_cost, &solvers.local());
+        out[i] = evaluate_candidate(problem, env, load_index, base, library, subsets[i], h, options.bend_cost, &solvers.local(),
+                                    bound);
         if (progress) ++progress->evaluated;
       });
     });
     std::vector<int> indices;
     for (auto& c : out) {
       result.fem_calls += c.analysed || !c.fem_error.empty();
+      result.skipped_by_cost += c.over_cost_bound;
       indices.push_back(static_cast<int>(all.size()));
       seen[key_of(c.segments)] = static_cast<int>(all.size());
       all.push_back(std::move(c));
@@ -256,6 +276,7 @@ ComposeResult compose_part(const Problem& problem, const Environment& env, int l
     // SHEETGEN_COMPOSE_DEBUG=1: one stderr line per variant (why it is or is not valid).
     static const bool dbg = std::getenv("SHEETGEN_COMPOSE_DEBUG") != nullptr;
     auto evaluate_variants = [&](std::vector<Candidate>& variants, const char* kind, int& counter) {
+      const double bound = cost_bound();
       std::vector<Candidate> checked(variants.size());
       arena.execute([&] {
         tbb::parallel_for(size_t(0), variants.size(), [&](size_t k) {
@@ -263,7 +284,7 @@ ComposeResult compose_part(const Problem& problem, const Environment& env, int l
           std::vector<std::vector<Vec3>> polys;
           for (const auto& t : realise(variants[k].part).tabs) polys.push_back(t.corners);
           const double h = search_h > 0 ? search_h : 1.5 * default_element_size(polys, problem.material.thickness);
-          checked[k] = evaluate_part(problem, env, load_index, variants[k], h, options.bend_cost, &solvers.local());
+          checked[k] = evaluate_part(problem, env, load_index, variants[k], h, options.bend_cost, &solvers.local(), bound);
           if (progress) ++progress->evaluated;
         });
       });
@@ -274,6 +295,7 @@ ComposeResult compose_part(const Problem& problem, const Environment& env, int l
                        v.geometry_ok ? "" : v.message.c_str(), v.analysed ? v.fem.compliance : -1.0,
                        v.analysed ? v.fem.compliance_limit : -1.0, v.analysed ? v.fem.margin_of_safety : -1.0, v.area * 1e4);
         result.fem_calls += v.analysed || !v.fem_error.empty();
+        result.skipped_by_cost += v.over_cost_bound;
         ++counter;
         if (v.valid()) {
           result.valid.push_back(v);

@@ -6,6 +6,7 @@
 // scored cost = area + lambda * bends. The answer is the cheapest candidate that
 // is stiff and strong enough.
 #include <atomic>
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -25,6 +26,11 @@ struct ComposeOptions {
   double search_element_size = 0;  // m, FEM mesh during the search; <= 0: 1.5x the default size
   bool self_rivet = true;          // try self-riveting when MS passes but compliance does not
   bool stiffening_lips = true;     // try lips on the free edges of candidates that miss their limits
+  // Valid parts kept as fallbacks for the final check at the default mesh. Once
+  // this many are known, a candidate costing at least the dearest of them is
+  // not analysed: it can be neither the answer nor a beam state (docs/pipeline.md
+  // "Cost bound"). 0 analyses every candidate.
+  int kept_valid = 4;
   int threads = 0;                 // 0 = all cores; results do not depend on it
 };
 
@@ -42,6 +48,7 @@ struct Candidate {
   int bends = 0;
   double cost = 0;                 // m^2, area + lambda * bends
   std::vector<SelfRivetTie> self_rivets;  // gusset rivets (paper Sec. 5.2), tied in the FEM
+  bool over_cost_bound = false;    // geometry ok, but not analysed: dearer than the valid parts kept
   bool valid() const { return geometry_ok && analysed && fem.stiff_enough && fem.strong_enough; }
 };
 
@@ -70,6 +77,7 @@ struct ComposeResult {
   int candidates = 0;
   int self_rivet_candidates = 0;   // gusset variants evaluated
   int lip_candidates = 0;          // lipped variants evaluated
+  int skipped_by_cost = 0;         // candidates not analysed (ComposeOptions::kept_valid)
   bool cancelled = false;
   double seconds = 0;
 };
@@ -82,11 +90,14 @@ ComposeResult compose_part(const Problem& problem, const Environment& env, int l
 // bend sequence, FEM. element_size <= 0: the default mesh.
 Candidate evaluate_candidate(const Problem& problem, const Environment& env, int load_index, const Part& base,
                              const SegmentLibrary& library, std::vector<int> segments, double element_size,
-                             double bend_cost, ShellSolver* solver = nullptr);
+                             double bend_cost, ShellSolver* solver = nullptr,
+                             double cost_bound = std::numeric_limits<double>::infinity());
 
 // Re-evaluates a candidate's own part (with its self-rivets), e.g. at the
-// default mesh for the final check.
+// default mesh for the final check. A part whose cost (m^2) is at least
+// cost_bound is checked but not analysed (over_cost_bound).
 Candidate evaluate_part(const Problem& problem, const Environment& env, int load_index, Candidate candidate,
-                        double element_size, double bend_cost, ShellSolver* solver = nullptr);
+                        double element_size, double bend_cost, ShellSolver* solver = nullptr,
+                        double cost_bound = std::numeric_limits<double>::infinity());
 
 }  // namespace sheetgen

@@ -4,6 +4,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <set>
 #include <sstream>
 #include <thread>
 #include <unistd.h>
@@ -112,23 +113,43 @@ bool search_pass(const Problem& scene, const Environment& env, int li, const Gen
   t0 = std::chrono::steady_clock::now();
   ComposeResult composed = compose_part(scene, env, li, found.base, found.library, copt, progress ? &progress->compose : nullptr);
   if (composed.cancelled || (progress && progress->cancel.load())) return false;
+  std::string final_reason;
+  std::set<std::pair<std::vector<int>, double>> failed;  // (segments, cost) of parts the final check rejected
+  auto final_check = [&](const std::vector<Candidate>& valid) {
+    for (const Candidate& c : valid) {
+      if (failed.count({c.segments, c.cost})) continue;
+      Candidate checked = evaluate_part(scene, env, li, c, 0.0, copt.bend_cost);
+      ++out.fem_calls;
+      if (checked.valid()) {
+        out.part = checked;
+        out.ok = true;
+        return;
+      }
+      failed.insert({c.segments, c.cost});
+      if (final_reason.empty() && checked.analysed)
+        final_reason = "at the default mesh the cheapest part misses its limits (compliance " + std::to_string(checked.fem.compliance) +
+                       " J, limit " + std::to_string(checked.fem.compliance_limit) + " J, MS " + std::to_string(checked.fem.margin_of_safety) + ")";
+    }
+  };
+  final_check(composed.valid);
+  out.skipped_by_cost = composed.skipped_by_cost;
+  // Every kept part failed at the default mesh while the cost bound left dearer
+  // ones unanalysed: search again without the bound, which finds exactly the
+  // valid parts of an unbounded search (docs/pipeline.md "Cost bound").
+  if (!out.ok && composed.skipped_by_cost > 0) {
+    ComposeOptions unbounded = copt;
+    unbounded.kept_valid = 0;
+    ComposeResult again = compose_part(scene, env, li, found.base, found.library, unbounded, progress ? &progress->compose : nullptr);
+    if (again.cancelled || (progress && progress->cancel.load())) return false;
+    out.fem_calls += composed.fem_calls;
+    out.composition_reruns = 1;
+    composed = std::move(again);
+    final_check(composed.valid);
+  }
   out.history = composed.history;
-  out.fem_calls = composed.fem_calls;
+  out.fem_calls += composed.fem_calls;
   out.self_rivet_candidates = composed.self_rivet_candidates;
   out.lip_candidates = composed.lip_candidates;
-  std::string final_reason;
-  for (const Candidate& c : composed.valid) {
-    Candidate checked = evaluate_part(scene, env, li, c, 0.0, copt.bend_cost);
-    ++out.fem_calls;
-    if (checked.valid()) {
-      out.part = checked;
-      out.ok = true;
-      break;
-    }
-    if (final_reason.empty() && checked.analysed)
-      final_reason = "at the default mesh the cheapest part misses its limits (compliance " + std::to_string(checked.fem.compliance) +
-                     " J, limit " + std::to_string(checked.fem.compliance_limit) + " J, MS " + std::to_string(checked.fem.margin_of_safety) + ")";
-  }
   out.composition_seconds = seconds_since(t0);
   if (!out.ok) {
     out.part = composed.found ? composed.valid.front() : composed.closest;
@@ -351,6 +372,8 @@ nlohmann::json result_json(const Problem& problem, const GenerateResult& result,
     p["fem_calls"] = o.fem_calls;
     p["self_rivet_candidates"] = o.self_rivet_candidates;
     p["lip_candidates"] = o.lip_candidates;
+    p["skipped_by_cost"] = o.skipped_by_cost;
+    p["composition_reruns"] = o.composition_reruns;
     p["web_pass_tried"] = o.web_pass_tried;
     p["web_roots"] = o.web_roots;
     p["flat_pass_tried"] = o.flat_pass_tried;

@@ -64,6 +64,8 @@ struct LoadOutcome {
   int fem_calls = 0;
   int self_rivet_candidates = 0;     // gusset variants the composition tried
   int lip_candidates = 0;            // lipped variants the composition tried
+  int skipped_by_cost = 0;           // candidates the cost bound left unanalysed (ComposeOptions::kept_valid)
+  int composition_reruns = 0;        // 1: every kept part failed the final check, searched again without the bound
   bool web_pass_tried = false;       // the first search found no valid part, a second ran with web roots
   bool web_roots = false;            // the answer comes from that second search
   bool flat_pass_tried = false;      // no search so far found a valid part, a third ran with flat extensions
