@@ -55,6 +55,11 @@ double violation(const Candidate& c, const Problem& problem) {
   return v;
 }
 
+// The beam's rank: cost times how far off the limits, squared (lower is better).
+double beam_score(const Candidate& c, const Problem& problem) {
+  return c.cost * std::pow(1.0 + violation(c, problem), 2);
+}
+
 std::string percent(double x) {
   std::ostringstream s;
   s.precision(3);
@@ -96,16 +101,22 @@ Candidate evaluate_part(const Problem& problem, const Environment& env, int load
     c.over_cost_bound = true;
     return c;
   }
+  analyse_candidate(problem, load_index, c, element_size, solver);
+  return c;
+}
+
+void analyse_candidate(const Problem& problem, int load_index, Candidate& c, double element_size, ShellSolver* solver) {
+  c.analysed = false;
+  c.fem_error.clear();
   try {
     PartModelOptions mo;
     mo.element_size = element_size;
     mo.self_rivets = c.self_rivets;
-    c.fem = analyse_part(problem, load_index, plate_geometry(c.part, realised), mo, solver);
+    c.fem = analyse_part(problem, load_index, plate_geometry(c.part, realise(c.part)), mo, solver);
     c.analysed = true;
   } catch (const FemError& e) {
     c.fem_error = e.what();
   }
-  return c;
 }
 
 Candidate evaluate_candidate(const Problem& problem, const Environment& env, int load_index, const Part& base,
@@ -184,6 +195,49 @@ ComposeResult compose_part(const Problem& problem, const Environment& env, int l
     return costs[k - 1];
   };
 
+  auto default_size = [&](const Part& part) {
+    std::vector<std::vector<Vec3>> polys;
+    for (const auto& t : realise(part).tabs) polys.push_back(t.corners);
+    return default_element_size(polys, problem.material.thickness);
+  };
+  auto search_size = [&](const Part& part) { return search_h > 0 ? search_h : 1.5 * default_size(part); };
+  const bool screening = options.screen_element_factor > 0;
+
+  // Screening (docs/pipeline.md "Screening"): which of a batch analysed on the
+  // screening mesh are analysed again on the search mesh. Every one valid
+  // there (it may be the answer or a fallback), every one the coarse model
+  // could not solve, and the screen_keep * B best by the beam's score among
+  // those that could still enter the beam (cheaper than the best valid part).
+  auto reanalyse = [&](std::vector<Candidate>& batch) {
+    std::vector<size_t> again, ranked;
+    for (size_t i = 0; i < batch.size(); ++i) {
+      const Candidate& c = batch[i];
+      if (!c.geometry_ok || c.over_cost_bound) continue;
+      ++result.screen_fem_calls;
+      if (!c.analysed || c.valid()) again.push_back(i);
+      else if (!result.found || c.cost < result.best.cost) ranked.push_back(i);
+    }
+    std::stable_sort(ranked.begin(), ranked.end(),
+                     [&](size_t a, size_t b) { return beam_score(batch[a], problem) < beam_score(batch[b], problem); });
+    const size_t keep = static_cast<size_t>(std::max(0, options.screen_keep)) * static_cast<size_t>(std::max(1, options.beam_width));
+    for (size_t r = 0; r < ranked.size(); ++r) {
+      if (r < keep) {
+        again.push_back(ranked[r]);
+      } else {
+        batch[ranked[r]].screened_out = true;  // keeps the screening result in fem, but is not analysed
+        batch[ranked[r]].analysed = false;
+        ++result.screened_out;
+      }
+    }
+    arena.execute([&] {
+      tbb::parallel_for(size_t(0), again.size(), [&](size_t k) {
+        if (progress && progress->cancel.load()) return;
+        Candidate& c = batch[again[k]];
+        analyse_candidate(problem, load_index, c, search_size(c.part), &solvers.local());
+      });
+    });
+  };
+
   auto evaluate = [&](const std::vector<std::vector<int>>& subsets) {
     const double bound = cost_bound();
     std::vector<Candidate> out(subsets.size());
@@ -194,18 +248,14 @@ ComposeResult compose_part(const Problem& problem, const Environment& env, int l
         // thread must reach the caller as an error (TBB rethrows it there).
         static const char* inject = std::getenv("SHEETGEN_INJECT_FAULT");
         if (inject && std::strcmp(inject, "composition") == 0) throw std::runtime_error("injected fault in a composition worker");
-        Part probe = assemble_part(base, library, subsets[i]);
-        double h = search_h;
-        if (!(h > 0)) {
-          std::vector<std::vector<Vec3>> polys;
-          for (const auto& t : realise(probe).tabs) polys.push_back(t.corners);
-          h = 1.5 * default_element_size(polys, problem.material.thickness);
-        }
+        const Part probe = assemble_part(base, library, subsets[i]);
+        const double h = screening ? options.screen_element_factor * default_size(probe) : search_size(probe);
         out[i] = evaluate_candidate(problem, env, load_index, base, library, subsets[i], h, options.bend_cost, &solvers.local(),
                                     bound);
         if (progress) ++progress->evaluated;
       });
     });
+    if (screening) reanalyse(out);
     std::vector<int> indices;
     for (auto& c : out) {
       result.fem_calls += c.analysed || !c.fem_error.empty();
@@ -264,11 +314,8 @@ ComposeResult compose_part(const Problem& problem, const Environment& env, int l
       if (result.found && c.cost >= result.best.cost) continue;
       beam.push_back(i);
     }
-    std::stable_sort(beam.begin(), beam.end(), [&](int a, int b) {
-      const double sa = all[a].cost * std::pow(1.0 + violation(all[a], problem), 2);
-      const double sb = all[b].cost * std::pow(1.0 + violation(all[b], problem), 2);
-      return sa < sb;
-    });
+    std::stable_sort(beam.begin(), beam.end(),
+                     [&](int a, int b) { return beam_score(all[a], problem) < beam_score(all[b], problem); });
     if (static_cast<int>(beam.size()) > options.beam_width) beam.resize(options.beam_width);
 
     // Variants of beam candidates (gussets, lips): evaluated in parallel at the
@@ -281,9 +328,7 @@ ComposeResult compose_part(const Problem& problem, const Environment& env, int l
       arena.execute([&] {
         tbb::parallel_for(size_t(0), variants.size(), [&](size_t k) {
           if (progress && progress->cancel.load()) return;
-          std::vector<std::vector<Vec3>> polys;
-          for (const auto& t : realise(variants[k].part).tabs) polys.push_back(t.corners);
-          const double h = search_h > 0 ? search_h : 1.5 * default_element_size(polys, problem.material.thickness);
+          const double h = search_size(variants[k].part);
           checked[k] = evaluate_part(problem, env, load_index, variants[k], h, options.bend_cost, &solvers.local(), bound);
           if (progress) ++progress->evaluated;
         });

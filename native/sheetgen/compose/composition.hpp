@@ -31,6 +31,12 @@ struct ComposeOptions {
   // not analysed: it can be neither the answer nor a beam state (docs/pipeline.md
   // "Cost bound"). 0 analyses every candidate.
   int kept_valid = 4;
+  // Screening (docs/pipeline.md "Screening"): a level's candidates are first
+  // analysed on a mesh this many times the default size; only the
+  // screen_keep * beam_width best of them by the beam's score, and every one
+  // valid there, are analysed again on the search mesh. <= 0: no screening.
+  double screen_element_factor = 3.0;
+  int screen_keep = 2;
   int threads = 0;                 // 0 = all cores; results do not depend on it
 };
 
@@ -49,6 +55,7 @@ struct Candidate {
   double cost = 0;                 // m^2, area + lambda * bends
   std::vector<SelfRivetTie> self_rivets;  // gusset rivets (paper Sec. 5.2), tied in the FEM
   bool over_cost_bound = false;    // geometry ok, but not analysed: dearer than the valid parts kept
+  bool screened_out = false;       // analysed on the screening mesh only, not among the best there (fem is that result)
   bool valid() const { return geometry_ok && analysed && fem.stiff_enough && fem.strong_enough; }
 };
 
@@ -78,6 +85,8 @@ struct ComposeResult {
   int self_rivet_candidates = 0;   // gusset variants evaluated
   int lip_candidates = 0;          // lipped variants evaluated
   int skipped_by_cost = 0;         // candidates not analysed (ComposeOptions::kept_valid)
+  int screen_fem_calls = 0;        // analyses on the screening mesh (not in fem_calls)
+  int screened_out = 0;            // candidates analysed on the screening mesh only
   bool cancelled = false;
   double seconds = 0;
 };
@@ -92,6 +101,11 @@ Candidate evaluate_candidate(const Problem& problem, const Environment& env, int
                              const SegmentLibrary& library, std::vector<int> segments, double element_size,
                              double bend_cost, ShellSolver* solver = nullptr,
                              double cost_bound = std::numeric_limits<double>::infinity());
+
+// The FEM of a candidate whose geometry passed: sets analysed and fem, or
+// fem_error when the model cannot be solved. element_size <= 0: the default mesh.
+void analyse_candidate(const Problem& problem, int load_index, Candidate& candidate, double element_size,
+                       ShellSolver* solver = nullptr);
 
 // Re-evaluates a candidate's own part (with its self-rivets), e.g. at the
 // default mesh for the final check. A part whose cost (m^2) is at least

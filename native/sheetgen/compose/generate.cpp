@@ -133,6 +133,8 @@ bool search_pass(const Problem& scene, const Environment& env, int li, const Gen
   };
   final_check(composed.valid);
   out.skipped_by_cost = composed.skipped_by_cost;
+  out.screen_fem_calls = composed.screen_fem_calls;
+  out.screened_out = composed.screened_out;
   // Every kept part failed at the default mesh while the cost bound left dearer
   // ones unanalysed: search again without the bound, which finds exactly the
   // valid parts of an unbounded search (docs/pipeline.md "Cost bound").
@@ -142,6 +144,7 @@ bool search_pass(const Problem& scene, const Environment& env, int li, const Gen
     ComposeResult again = compose_part(scene, env, li, found.base, found.library, unbounded, progress ? &progress->compose : nullptr);
     if (again.cancelled || (progress && progress->cancel.load())) return false;
     out.fem_calls += composed.fem_calls;
+    out.screen_fem_calls += again.screen_fem_calls;
     out.composition_reruns = 1;
     composed = std::move(again);
     final_check(composed.valid);
@@ -373,6 +376,8 @@ nlohmann::json result_json(const Problem& problem, const GenerateResult& result,
     p["self_rivet_candidates"] = o.self_rivet_candidates;
     p["lip_candidates"] = o.lip_candidates;
     p["skipped_by_cost"] = o.skipped_by_cost;
+    p["screen_fem_calls"] = o.screen_fem_calls;
+    p["screened_out"] = o.screened_out;
     p["composition_reruns"] = o.composition_reruns;
     p["web_pass_tried"] = o.web_pass_tried;
     p["web_roots"] = o.web_roots;

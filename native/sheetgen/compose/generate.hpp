@@ -65,6 +65,8 @@ struct LoadOutcome {
   int self_rivet_candidates = 0;     // gusset variants the composition tried
   int lip_candidates = 0;            // lipped variants the composition tried
   int skipped_by_cost = 0;           // candidates the cost bound left unanalysed (ComposeOptions::kept_valid)
+  int screen_fem_calls = 0;          // analyses on the composition's screening mesh (not in fem_calls)
+  int screened_out = 0;              // candidates analysed on the screening mesh only
   int composition_reruns = 0;        // 1: every kept part failed the final check, searched again without the bound
   bool web_pass_tried = false;       // the first search found no valid part, a second ran with web roots
   bool web_roots = false;            // the answer comes from that second search

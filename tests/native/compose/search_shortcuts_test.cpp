@@ -1,0 +1,129 @@
+// The composition's two shortcuts (docs/pipeline.md "Cost bound", "Screening")
+// against the plain beam search on the corner scene's library.
+// * The cost bound (ComposeOptions::kept_valid) only leaves out work: the same
+//   best part, the same beam (so the same candidates and history) and the same
+//   cheapest valid parts, and every candidate it did not analyse is one the
+//   unbounded search analysed.
+// * Screening re-analyses on the search mesh what could matter: with every
+//   candidate kept it is the plain search; with the default it leaves some out,
+//   and every valid part it reports carries its search-mesh analysis.
+#include <gtest/gtest.h>
+
+#include <cstdio>
+#include <string>
+
+#include "sheetgen/compose/composition.hpp"
+#include "sheetgen/discovery/discovery.hpp"
+#include "sheetgen/env/environment.hpp"
+#include "sheetgen/fem/plate_mesher.hpp"
+#include "sheetgen/part/realisation.hpp"
+
+namespace sheetgen {
+namespace {
+
+// The corner scene and its segment library at 6 x 300, found once for every test.
+struct CornerLibrary {
+  Problem problem;
+  Environment env;
+  DiscoveryResult found;
+  CornerLibrary()
+      : problem(load_problem(std::string(SHEETGEN_SOURCE_DIR) + "/sample_scenes/corner/problem.json")), env(problem) {
+    DiscoveryOptions d = DiscoveryOptions::from(problem);
+    d.chains = 6;
+    d.iterations = 300;
+    d.threads = 2;
+    found = discover_segments(problem, env, 0, d);
+  }
+  static const CornerLibrary& get() {
+    static const CornerLibrary library;
+    return library;
+  }
+  ComposeResult compose(ComposeOptions o) const {
+    o.threads = 2;
+    return compose_part(problem, env, 0, found.base, found.library, o);
+  }
+};
+
+ComposeOptions plain(int kept_valid) {
+  ComposeOptions o;
+  o.kept_valid = kept_valid;
+  o.screen_element_factor = 0;
+  return o;
+}
+
+TEST(CostBound, LeavesOutOnlyCandidatesThatCannotMatter) {
+  const CornerLibrary& lib = CornerLibrary::get();
+  ASSERT_GT(lib.found.library.size(), 0);
+  const ComposeResult full = lib.compose(plain(0));
+  ASSERT_TRUE(full.found) << full.reason;
+  ASSERT_EQ(full.skipped_by_cost, 0);
+  for (int kept : {1, 3}) {
+    SCOPED_TRACE("kept_valid " + std::to_string(kept));
+    const ComposeResult bounded = lib.compose(plain(kept));
+    std::printf("kept_valid %d: %d of %d candidates not analysed, FEM calls %d (unbounded %d), valid %zu (%zu)\n", kept,
+                bounded.skipped_by_cost, bounded.candidates, bounded.fem_calls, full.fem_calls, bounded.valid.size(),
+                full.valid.size());
+    ASSERT_TRUE(bounded.found);
+    // Measured: 4 candidates left out at kept_valid 1, 2 at 3.
+    if (kept == 1) {
+      EXPECT_GT(bounded.skipped_by_cost, 0) << "the bound was not exercised";
+    }
+    EXPECT_EQ(bounded.best.segments, full.best.segments);
+    EXPECT_EQ(bounded.best.cost, full.best.cost);
+    // The same beam at every level: the same candidates were generated.
+    EXPECT_EQ(bounded.candidates, full.candidates);
+    ASSERT_EQ(bounded.history.size(), full.history.size());
+    for (size_t i = 0; i < full.history.size(); ++i) EXPECT_EQ(bounded.history[i].best_cost, full.history[i].best_cost);
+    // Each candidate left out would have been analysed by the unbounded search.
+    EXPECT_EQ(bounded.fem_calls + bounded.skipped_by_cost, full.fem_calls);
+    // The kept cheapest valid parts are the unbounded search's, in order.
+    ASSERT_GE(bounded.valid.size(), std::min<size_t>(kept, full.valid.size()));
+    for (size_t i = 0; i < static_cast<size_t>(kept) && i < full.valid.size(); ++i) {
+      EXPECT_EQ(bounded.valid[i].segments, full.valid[i].segments);
+      EXPECT_EQ(bounded.valid[i].cost, full.valid[i].cost);
+    }
+    for (const Candidate& v : bounded.valid) EXPECT_FALSE(v.over_cost_bound);
+  }
+}
+
+TEST(Screening, KeepingEveryCandidateIsThePlainSearch) {
+  const CornerLibrary& lib = CornerLibrary::get();
+  const ComposeResult ref = lib.compose(plain(4));
+  ComposeOptions o = plain(4);
+  o.screen_element_factor = 3.0;
+  o.screen_keep = 100000;
+  const ComposeResult all = lib.compose(o);
+  ASSERT_TRUE(ref.found);
+  ASSERT_TRUE(all.found);
+  EXPECT_EQ(all.screened_out, 0);
+  EXPECT_GT(all.screen_fem_calls, 0);
+  EXPECT_EQ(all.best.segments, ref.best.segments);
+  EXPECT_EQ(all.best.cost, ref.best.cost);
+  EXPECT_EQ(all.best.fem.compliance, ref.best.fem.compliance);
+  EXPECT_EQ(all.candidates, ref.candidates);
+  EXPECT_EQ(all.fem_calls, ref.fem_calls);
+}
+
+TEST(Screening, ValidPartsCarryTheirSearchMeshAnalysis) {
+  const CornerLibrary& lib = CornerLibrary::get();
+  ComposeOptions o;  // the defaults: bound and screening on
+  o.screen_keep = 1;
+  const ComposeResult r = lib.compose(o);
+  std::printf("screening: %d analyses on the screening mesh, %d left there, %d on the search mesh, %d candidates\n",
+              r.screen_fem_calls, r.screened_out, r.fem_calls, r.candidates);
+  ASSERT_TRUE(r.found) << r.reason;
+  EXPECT_GT(r.screened_out, 0) << "screening left nothing out";
+  for (const Candidate& v : r.valid) {
+    std::vector<std::vector<Vec3>> polys;
+    for (const auto& t : realise(v.part).tabs) polys.push_back(t.corners);
+    Candidate again = v;
+    analyse_candidate(lib.problem, 0, again, 1.5 * default_element_size(polys, lib.problem.material.thickness));
+    ASSERT_TRUE(again.analysed) << again.fem_error;
+    EXPECT_EQ(again.fem.compliance, v.fem.compliance);
+    EXPECT_EQ(again.fem.margin_of_safety, v.fem.margin_of_safety);
+    EXPECT_FALSE(v.screened_out);
+  }
+}
+
+}  // namespace
+}  // namespace sheetgen
