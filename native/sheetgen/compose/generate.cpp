@@ -2,6 +2,7 @@
 
 #include <chrono>
 #include <cstdio>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <set>
@@ -118,8 +119,12 @@ bool search_pass(const Problem& scene, const Environment& env, int li, const Gen
   auto final_check = [&](const std::vector<Candidate>& valid) {
     for (const Candidate& c : valid) {
       if (failed.count({c.segments, c.cost})) continue;
+      const auto tc = std::chrono::steady_clock::now();
       Candidate checked = evaluate_part(scene, env, li, c, 0.0, copt.bend_cost);
       ++out.fem_calls;
+      if (std::getenv("SHEETGEN_COMPOSE_DEBUG"))
+        std::fprintf(stderr, "[final check] %s%s: %s in %.2f s\n", out.load.c_str(), web_roots ? " (web roots)" : "",
+                     checked.valid() ? "valid" : "fails", seconds_since(tc));
       if (checked.valid()) {
         out.part = checked;
         out.ok = true;
@@ -225,7 +230,10 @@ GenerateResult generate(const Problem& input, const GenerateOptions& options, Ge
   CancelRelay relay(progress);
   auto cancelled = [&] { return progress && progress->cancel.load(); };
 
-  std::vector<EnvironmentMesh> earlier_parts;
+  // The scene's fields are built once; each load's environment adds the part
+  // of the load before it (one small field) to the previous load's.
+  std::vector<EnvironmentMesh> new_parts;  // made since `env_ptr` was built
+  std::unique_ptr<Environment> env_ptr;
   for (int li = 0; li < static_cast<int>(problem.loads.size()); ++li) {
     const auto load_start = std::chrono::steady_clock::now();
     LoadOutcome out;
@@ -234,18 +242,18 @@ GenerateResult generate(const Problem& input, const GenerateOptions& options, Ge
       progress->load = li;
       progress->stage = static_cast<int>(Stage::Environment);
     }
-    Problem scene = problem;
-    for (const auto& m : earlier_parts) scene.meshes.push_back(m);
     EnvironmentOptions eo;
     if (progress) eo.cancel = &progress->cancel;
-    std::unique_ptr<Environment> env_ptr;
     try {
-      env_ptr = std::make_unique<Environment>(scene, eo);
+      if (!env_ptr) env_ptr = std::make_unique<Environment>(problem, eo);
+      else if (!new_parts.empty()) env_ptr = std::make_unique<Environment>(*env_ptr, new_parts, eo);
+      new_parts.clear();
     } catch (const Cancelled&) {
       result.cancelled = true;
       break;
     }
     const Environment& env = *env_ptr;
+    const Problem& scene = env.problem();
     out.environment_seconds = seconds_since(load_start);
     if (cancelled()) {
       result.cancelled = true;
@@ -318,7 +326,7 @@ GenerateResult generate(const Problem& input, const GenerateOptions& options, Ge
         mo.self_rivets = out.part.self_rivets;
         const PartModel pm = build_part_model(*answer_scene, li, plate_geometry(out.part.part, out.realised), mo);
         out.rivets = pm.rivets;
-        earlier_parts.push_back(part_as_obstacle(out.load, out.realised, scene.material.thickness));
+        new_parts.push_back(part_as_obstacle(out.load, out.realised, scene.material.thickness));
       }
     }
     out.total_seconds = seconds_since(load_start);

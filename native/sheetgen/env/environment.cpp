@@ -92,15 +92,59 @@ Environment::Environment(const Problem& problem, const EnvironmentOptions& optio
       if (face_rivet_area_[m][f] < 0) plain.push_back(f);
     append(obstacles, submesh(problem_.meshes[m].mesh, plain));
   }
-  obstacles_ = std::make_unique<DistanceField>(obstacles, fo);
+  obstacles_ = std::make_shared<DistanceField>(obstacles, fo);
   for (int r = 0; r < nra; ++r) {
     const auto& ra = problem_.rivet_areas[r];
     TriangleMesh ram = submesh(problem_.meshes[ra.mesh].mesh, ra.faces);
     rivet_bounds_.push_back(bounding_box(ram));
     append(all_ra, ram);
-    rivet_fields_.push_back(std::make_unique<DistanceField>(ram, fo));
+    rivet_fields_.push_back(std::make_shared<DistanceField>(ram, fo));
   }
-  all_rivet_areas_ = std::make_unique<DistanceField>(all_ra, fo);
+  all_rivet_areas_ = std::make_shared<DistanceField>(all_ra, fo);
+  build_mesh_queries(options);
+}
+
+Environment::Environment(const Environment& base, const std::vector<EnvironmentMesh>& extra, const EnvironmentOptions& options)
+    : problem_(base.problem_),
+      obstacles_(base.obstacles_),
+      rivet_fields_(base.rivet_fields_),
+      all_rivet_areas_(base.all_rivet_areas_),
+      rivet_bounds_(base.rivet_bounds_),
+      added_fields_(base.added_fields_),
+      added_bounds_(base.added_bounds_),
+      load_boxes_(base.load_boxes_) {
+  TriangleMesh added;
+  for (const EnvironmentMesh& m : extra) {
+    append(added, m.mesh);
+    problem_.meshes.push_back(m);
+  }
+  if (!added.triangles.empty()) {
+    DistanceFieldOptions fo;
+    fo.voxel_size = base.obstacles_->voxel_size();
+    fo.band_voxels = static_cast<int>(std::lround(base.obstacles_->band_width() / fo.voxel_size));
+    // Beyond its band a field over a few hundred triangles would answer by
+    // brute force (DistanceFieldOptions::exact_fallback_triangles); the
+    // scene's obstacle field gives a lower bound there, and so does this one.
+    fo.exact_fallback_triangles = 0;
+    fo.cancel = options.cancel;
+    added_bounds_.push_back(bounding_box(added));
+    added_fields_.push_back(std::make_shared<DistanceField>(added, fo));
+  }
+  build_mesh_queries(options);
+}
+
+double Environment::added_distance(const Vec3& p, double below) const {
+  double d = std::numeric_limits<double>::infinity();
+  for (size_t k = 0; k < added_fields_.size(); ++k)
+    if (added_bounds_[k].distance(p) < std::min(d, below)) d = std::min(d, added_fields_[k]->distance(p));
+  return d;
+}
+
+void Environment::build_mesh_queries(const EnvironmentOptions& options) {
+  face_rivet_area_.resize(problem_.meshes.size());
+  for (size_t m = 0; m < problem_.meshes.size(); ++m) face_rivet_area_[m].assign(problem_.meshes[m].mesh.triangles.size(), -1);
+  for (int r = 0; r < static_cast<int>(problem_.rivet_areas.size()); ++r)
+    for (int f : problem_.rivet_areas[r].faces) face_rivet_area_[problem_.rivet_areas[r].mesh][f] = r;
 
   // Ray caster: every environment mesh whole, then every load box.
   std::vector<TriangleMesh> boxes;
@@ -109,6 +153,7 @@ Environment::Environment(const Problem& problem, const EnvironmentOptions& optio
   for (const auto& m : problem_.meshes) geoms.push_back(&m.mesh);
   for (const auto& b : boxes) geoms.push_back(&b);
   rays_ = std::make_unique<RayCaster>(geoms);
+  mesh_closed_.clear();
   for (const auto& m : problem_.meshes) mesh_closed_.push_back(m.mesh.is_closed() ? 1 : 0);
 
   std::vector<std::array<Vec3, 3>> tris;
@@ -165,6 +210,7 @@ double Environment::clearance(const Vec3& p, const AllowedContacts& allowed) con
 
 double Environment::distance_excluding(const Vec3& p, const AllowedContacts& allowed) const {
   double d = obstacles_->distance(p);
+  if (!added_fields_.empty()) d = std::min(d, added_distance(p, d));
   if (!rivet_fields_.empty()) {
     if (allowed.rivet_areas.empty()) {
       d = std::min(d, all_rivet_areas_->distance(p));
@@ -194,6 +240,14 @@ Vec3 Environment::clearance_gradient(const Vec3& p) const {
   // The gradient of a minimum is the gradient of the component that attains it.
   double best = obstacles_->distance(p);
   Vec3 g = obstacles_->gradient(p);
+  for (size_t k = 0; k < added_fields_.size(); ++k) {
+    if (added_bounds_[k].distance(p) >= best) continue;
+    const double d = added_fields_[k]->distance(p);
+    if (d < best) {
+      best = d;
+      g = added_fields_[k]->gradient(p);
+    }
+  }
   if (!rivet_fields_.empty()) {
     const double d = all_rivet_areas_->distance(p);
     if (d < best) {

@@ -54,6 +54,13 @@ struct ContactResult {
 class Environment {
  public:
   explicit Environment(const Problem& problem, const EnvironmentOptions& options = {});
+  // `base` with more obstacles: `extra` (the parts made for earlier loads of
+  // the problem) appended to its meshes, never rivet areas. Shares every
+  // distance field of `base` (the static scene's grids are built once per
+  // problem, not once per load) and builds one field over `extra` alone, with
+  // base's voxel size and band; rays and the triangle tree are rebuilt over
+  // all meshes (docs/environment.md "More obstacles").
+  Environment(const Environment& base, const std::vector<EnvironmentMesh>& extra, const EnvironmentOptions& options = {});
   ~Environment();
   Environment(const Environment&) = delete;
   Environment& operator=(const Environment&) = delete;
@@ -99,11 +106,21 @@ class Environment {
   std::optional<ContactResult> exact_polygon_contact(const std::vector<Vec3>& polygon, double required,
                                                      const AllowedContacts& allowed) const;
 
+  // Rays, the triangle tree and the per-mesh tables over every mesh of problem_.
+  void build_mesh_queries(const EnvironmentOptions& options);
+  // Distance to the obstacles added by the second constructor (infinity when none), m.
+  double added_distance(const Vec3& p, double below) const;
+
   Problem problem_;
-  std::unique_ptr<DistanceField> obstacles_;                  // environment faces that are not rivet areas
-  std::vector<std::unique_ptr<DistanceField>> rivet_fields_;  // one per rivet area
-  std::unique_ptr<DistanceField> all_rivet_areas_;            // union, for quick rejection
+  std::shared_ptr<const DistanceField> obstacles_;                  // environment faces that are not rivet areas
+  std::vector<std::shared_ptr<const DistanceField>> rivet_fields_;  // one per rivet area
+  std::shared_ptr<const DistanceField> all_rivet_areas_;            // union, for quick rejection
   std::vector<BoundingBox> rivet_bounds_;
+  // Obstacles added after the scene (parts of earlier loads), one field per
+  // addition with its mesh's box; answered beyond their band by a lower bound
+  // like obstacles_.
+  std::vector<std::shared_ptr<const DistanceField>> added_fields_;
+  std::vector<BoundingBox> added_bounds_;
   // The load boxes, prepared for the clearance queries (the hot path of the
   // discovery in scenes with many loads): rotation as a matrix, and a bounding
   // sphere to skip boxes farther than the nearest obstacle found so far.

@@ -2,8 +2,11 @@
 
 #include <gtest/gtest.h>
 
+#include <array>
+#include <cstdio>
 #include <random>
 
+#include "sheetgen/core/geometry.hpp"
 #include "sheetgen/env/distance_field.hpp"
 #include "test_meshes.hpp"
 
@@ -34,6 +37,76 @@ Problem floor_problem() {
 
 std::vector<Vec3> square(const Vec3& c, double half, double z) {
   return {c + Vec3(-half, -half, z), c + Vec3(half, -half, z), c + Vec3(half, half, z), c + Vec3(-half, half, z)};
+}
+
+// Obstacles added to a built environment (the parts of earlier loads,
+// docs/environment.md "More obstacles"): the environment built from the scene
+// plus one small field over the added meshes answers like one built from
+// scratch over all of them, and both keep the field's accuracy contract
+// against brute force.
+TEST(Environment, AddedObstaclesAnswerLikeAnEnvironmentBuiltWithThem) {
+  const Problem p = floor_problem();
+  std::vector<EnvironmentMesh> added = {
+      {"part:a", testing::plane(Vec3(-0.1, -0.15, 0.06), Vec3(0.3, 0.1, 1.0).normalized(), 0.12, 3), "<generated>"},
+      {"part:b", testing::icosphere(0.04, 2, Vec3(0.05, 0.2, 0.08)), "<generated>"}};
+  Problem all = p;
+  for (const auto& m : added) all.meshes.push_back(m);
+  const Environment scratch(all);
+  const Environment base(p);
+  const Environment grown(base, added);
+  ASSERT_EQ(grown.problem().meshes.size(), all.meshes.size());
+  EXPECT_EQ(grown.rivet_area_of_face(1, 0), -1);
+  EXPECT_EQ(grown.rivet_area_of_face(0, p.rivet_areas[0].faces[0]), 0);
+  const double h = grown.voxel_size();
+  EXPECT_EQ(h, scratch.voxel_size());
+
+  // Exact distance to every obstacle but the rivet area, and to the box.
+  std::vector<std::array<Vec3, 3>> tris;
+  std::vector<char> is_ra(all.meshes[0].mesh.triangles.size(), 0);
+  for (int f : p.rivet_areas[0].faces) is_ra[f] = 1;
+  for (size_t m = 0; m < all.meshes.size(); ++m)
+    for (size_t f = 0; f < all.meshes[m].mesh.triangles.size(); ++f) {
+      if (m == 0 && is_ra[f]) continue;
+      const auto& t = all.meshes[m].mesh.triangles[f];
+      const auto& v = all.meshes[m].mesh.vertices;
+      tris.push_back({v[t[0]], v[t[1]], v[t[2]]});
+    }
+  AllowedContacts allow_ra;
+  allow_ra.rivet_areas = {0};
+  std::mt19937_64 rng(11);
+  std::uniform_real_distribution<double> ux(-0.2, 0.2), uz(0.0, 0.14);
+  int compared = 0;
+  double worst_vs_exact = 0, worst_vs_scratch = 0;
+  for (int k = 0; k < 20000; ++k) {
+    const Vec3 q(ux(rng), ux(rng), uz(rng));
+    double exact = p.loads[0].signed_distance(q);
+    for (const auto& t : tris) exact = std::min(exact, (q - closest_point_on_triangle(q, t[0], t[1], t[2])).norm());
+    const double band = 4 * h;  // inside every field's band (5 voxels by default)
+    if (exact > band) continue;
+    ++compared;
+    const double g = grown.clearance(q, allow_ra), s = scratch.clearance(q, allow_ra);
+    worst_vs_exact = std::max(worst_vs_exact, std::abs(g - exact));
+    worst_vs_scratch = std::max(worst_vs_scratch, std::abs(g - s));
+  }
+  std::printf("added obstacles: %d points in the band, max error %.4f voxel (scratch build: %.4f voxel apart)\n", compared,
+              worst_vs_exact / h, worst_vs_scratch / h);
+  EXPECT_GT(compared, 800);
+  EXPECT_LT(worst_vs_exact, 0.5 * h);    // the field's contract (docs/environment.md "Accuracy")
+  EXPECT_LT(worst_vs_scratch, 0.25 * h);
+
+  // The exact tab test and the rays see the added meshes as the scratch build does.
+  const std::vector<Vec3> tab = square(Vec3(0.05, 0.2, 0.0), 0.05, 0.125);  // 5 mm over the sphere's top
+  for (double required : {0.003, 0.006}) {
+    const ContactResult a = grown.polygon_contact(tab, required, {}), b = scratch.polygon_contact(tab, required, {});
+    EXPECT_EQ(a.clear, b.clear) << required;
+    EXPECT_NEAR(a.min_clearance, b.min_clearance, 1e-12);
+  }
+  const auto hit = grown.cast_ray(Vec3(0.05, 0.2, 0.3), Vec3(0, 0, -1), 1.0);
+  ASSERT_TRUE(hit.has_value());
+  EXPECT_EQ(hit->mesh, 2);
+  EXPECT_NEAR(hit->distance, 0.3 - 0.12, 2e-3);  // the icosphere's top, a level-2 facet below 0.12
+  // The gradient near an added mesh points away from it.
+  EXPECT_GT(grown.clearance_gradient(Vec3(0.05, 0.2, 0.125)).z(), 0.9);
 }
 
 TEST(Environment, ClearanceCombinesFieldsAndBoxes) {
