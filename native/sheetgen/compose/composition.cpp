@@ -317,6 +317,22 @@ ComposeResult compose_part(const Problem& problem, const Environment& env, int l
     std::stable_sort(beam.begin(), beam.end(),
                      [&](int a, int b) { return beam_score(all[a], problem) < beam_score(all[b], problem); });
     if (static_cast<int>(beam.size()) > options.beam_width) beam.resize(options.beam_width);
+    if (std::getenv("SHEETGEN_COMPOSE_DEBUG")) {  // one line per candidate of the level, beam states marked
+      for (int i : fresh) {
+        const Candidate& c = all[i];
+        std::string segs, areas;
+        for (int id : c.segments) {
+          segs += " " + std::to_string(id);
+          const Segment* g = library.find(id);
+          areas += " " + std::to_string(g ? g->rivet_area : -9);
+        }
+        const bool in_beam = std::find(beam.begin(), beam.end(), i) != beam.end();
+        std::fprintf(stderr, "[candidate] level %d%s segs [%s ] ra [%s ] %s%s area %.1f cm2 C/Cmax %.3g MS %.3g score %.4g\n", level,
+                     in_beam ? " BEAM" : "", segs.c_str(), areas.c_str(), c.geometry_ok ? "ok" : "FAIL ",
+                     c.geometry_ok ? "" : c.message.c_str(), c.area * 1e4, c.analysed ? c.fem.compliance / c.fem.compliance_limit : -1.0,
+                     c.analysed ? c.fem.margin_of_safety : -9.0, c.analysed ? beam_score(c, problem) : -1.0);
+      }
+    }
 
     // Variants of beam candidates (gussets, lips): evaluated in parallel at the
     // search mesh; the valid ones are recorded, none is expanded further.
