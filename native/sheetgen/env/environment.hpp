@@ -59,7 +59,7 @@ class Environment {
   // distance field of `base` (the static scene's grids are built once per
   // problem, not once per load) and builds one field over `extra` alone, with
   // base's voxel size and band; rays and the triangle tree are rebuilt over
-  // all meshes (docs/environment.md "More obstacles").
+  // all meshes (docs/environment.md "Obstacles added later").
   Environment(const Environment& base, const std::vector<EnvironmentMesh>& extra, const EnvironmentOptions& options = {});
   ~Environment();
   Environment(const Environment&) = delete;
