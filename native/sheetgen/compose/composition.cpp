@@ -317,7 +317,8 @@ ComposeResult compose_part(const Problem& problem, const Environment& env, int l
     std::stable_sort(beam.begin(), beam.end(),
                      [&](int a, int b) { return beam_score(all[a], problem) < beam_score(all[b], problem); });
     if (static_cast<int>(beam.size()) > options.beam_width) beam.resize(options.beam_width);
-    if (std::getenv("SHEETGEN_COMPOSE_DEBUG")) {  // one line per candidate of the level, beam states marked
+    static const bool dbg = std::getenv("SHEETGEN_COMPOSE_DEBUG") != nullptr;
+    if (dbg) {  // one line per candidate of the level, beam states marked
       for (int i : fresh) {
         const Candidate& c = all[i];
         std::string segs, areas;
@@ -336,8 +337,7 @@ ComposeResult compose_part(const Problem& problem, const Environment& env, int l
 
     // Variants of beam candidates (gussets, lips): evaluated in parallel at the
     // search mesh; the valid ones are recorded, none is expanded further.
-    // SHEETGEN_COMPOSE_DEBUG=1: one stderr line per variant (why it is or is not valid).
-    static const bool dbg = std::getenv("SHEETGEN_COMPOSE_DEBUG") != nullptr;
+    // SHEETGEN_COMPOSE_DEBUG=1 (dbg): one stderr line per variant (why it is or is not valid).
     auto evaluate_variants = [&](std::vector<Candidate>& variants, const char* kind, int& counter) {
       const double bound = cost_bound();
       std::vector<Candidate> checked(variants.size());

@@ -80,10 +80,7 @@ Environment::Environment(const Problem& problem, const EnvironmentOptions& optio
 
   // Split every environment mesh into its rivet-area faces and the rest.
   const int nra = static_cast<int>(problem_.rivet_areas.size());
-  face_rivet_area_.resize(problem_.meshes.size());
-  for (size_t m = 0; m < problem_.meshes.size(); ++m) face_rivet_area_[m].assign(problem_.meshes[m].mesh.triangles.size(), -1);
-  for (int r = 0; r < nra; ++r)
-    for (int f : problem_.rivet_areas[r].faces) face_rivet_area_[problem_.rivet_areas[r].mesh][f] = r;
+  tag_rivet_faces();
 
   TriangleMesh obstacles, all_ra;
   for (size_t m = 0; m < problem_.meshes.size(); ++m) {
@@ -130,22 +127,32 @@ Environment::Environment(const Environment& base, const std::vector<EnvironmentM
     added_bounds_.push_back(bounding_box(added));
     added_fields_.push_back(std::make_shared<DistanceField>(added, fo));
   }
+  tag_rivet_faces();
   build_mesh_queries(options);
 }
 
-double Environment::added_distance(const Vec3& p, double below) const {
+double Environment::added_distance(const Vec3& p, double below, int* nearest) const {
   double d = std::numeric_limits<double>::infinity();
-  for (size_t k = 0; k < added_fields_.size(); ++k)
-    if (added_bounds_[k].distance(p) < std::min(d, below)) d = std::min(d, added_fields_[k]->distance(p));
+  if (nearest) *nearest = -1;
+  for (size_t k = 0; k < added_fields_.size(); ++k) {
+    if (added_bounds_[k].distance(p) >= std::min(d, below)) continue;
+    const double dk = added_fields_[k]->distance(p);
+    if (dk < d) {
+      d = dk;
+      if (nearest) *nearest = static_cast<int>(k);
+    }
+  }
   return d;
 }
 
-void Environment::build_mesh_queries(const EnvironmentOptions& options) {
+void Environment::tag_rivet_faces() {
   face_rivet_area_.resize(problem_.meshes.size());
   for (size_t m = 0; m < problem_.meshes.size(); ++m) face_rivet_area_[m].assign(problem_.meshes[m].mesh.triangles.size(), -1);
   for (int r = 0; r < static_cast<int>(problem_.rivet_areas.size()); ++r)
     for (int f : problem_.rivet_areas[r].faces) face_rivet_area_[problem_.rivet_areas[r].mesh][f] = r;
+}
 
+void Environment::build_mesh_queries(const EnvironmentOptions& options) {
   // Ray caster: every environment mesh whole, then every load box.
   std::vector<TriangleMesh> boxes;
   for (const auto& l : problem_.loads) boxes.push_back(l.box_mesh());
@@ -240,13 +247,11 @@ Vec3 Environment::clearance_gradient(const Vec3& p) const {
   // The gradient of a minimum is the gradient of the component that attains it.
   double best = obstacles_->distance(p);
   Vec3 g = obstacles_->gradient(p);
-  for (size_t k = 0; k < added_fields_.size(); ++k) {
-    if (added_bounds_[k].distance(p) >= best) continue;
-    const double d = added_fields_[k]->distance(p);
-    if (d < best) {
-      best = d;
-      g = added_fields_[k]->gradient(p);
-    }
+  int nearest = -1;
+  const double da = added_distance(p, best, &nearest);
+  if (nearest >= 0 && da < best) {
+    best = da;
+    g = added_fields_[nearest]->gradient(p);
   }
   if (!rivet_fields_.empty()) {
     const double d = all_rivet_areas_->distance(p);

@@ -108,8 +108,11 @@ class Environment {
 
   // Rays, the triangle tree and the per-mesh tables over every mesh of problem_.
   void build_mesh_queries(const EnvironmentOptions& options);
-  // Distance to the obstacles added by the second constructor (infinity when none), m.
-  double added_distance(const Vec3& p, double below) const;
+  // face_rivet_area_ for every mesh of problem_.
+  void tag_rivet_faces();
+  // Distance to the obstacles added by the second constructor (infinity when
+  // none or all farther than `below`), m; `nearest` gets the field attaining it (-1: none).
+  double added_distance(const Vec3& p, double below, int* nearest = nullptr) const;
 
   Problem problem_;
   std::shared_ptr<const DistanceField> obstacles_;                  // environment faces that are not rivet areas
