@@ -1,11 +1,13 @@
 // Flat-shell FEM speed (docs/fem.md "Benchmarks"): the three-tab bracket of
-// the CalculiX validation test at two mesh sizes (~5 000 and ~20 000 DOF),
+// the CalculiX validation test at two mesh sizes (~5 000 and ~20 000 DOF; the
+// cold solve also at ~90 000 and ~190 000 DOF, the size of a bay part's final check),
 //   BM_FemSolveCold  - a fresh ShellSolver each time: assemble, analyse, factor, solve, stresses;
 //   BM_FemSolveWarm  - one ShellSolver, same pattern: the symbolic analysis is reused;
 //   BM_FemMesh       - the plate mesher on the same polygons;
 //   BM_Ccx           - CalculiX (ccx -i) on the exported deck of the same model, wall time,
 //                      with counter speedup = ccx time / our cold time.
-// Arguments: {mesh (0: h = 2.5 mm, 1: h = 1.25 mm), backend (0: CHOLMOD, 1: Eigen LDLT, the default)}.
+// Arguments: {mesh (0: h = 2.5 mm, 1: 1.25 mm; BM_FemSolveCold also 2: 0.625 mm, 3: 0.42 mm),
+// backend (0: CHOLMOD, 1: Eigen LDLT, the default)}.
 #include <benchmark/benchmark.h>
 #include <stdlib.h>
 
@@ -21,7 +23,7 @@ namespace {
 
 using namespace sheetgen;
 
-constexpr double kElementSize[2] = {2.5e-3, 1.25e-3};  // m -> ~5 600 and ~22 000 DOF
+constexpr double kElementSize[4] = {2.5e-3, 1.25e-3, 0.625e-3, 0.42e-3};  // m -> ~5 600, ~22 000, ~87 000 and ~191 000 DOF
 
 ShellSolveOptions options_for(int backend) {
   ShellSolveOptions o;
@@ -101,7 +103,7 @@ void BM_Ccx(benchmark::State& state) {
 
 }  // namespace
 
-BENCHMARK(BM_FemSolveCold)->ArgsProduct({{0, 1}, {0, 1}})->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_FemSolveCold)->ArgsProduct({{0, 1, 2, 3}, {0, 1}})->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_FemSolveWarm)->ArgsProduct({{0, 1}, {0, 1}})->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_FemMesh)->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_Ccx)->Arg(0)->Arg(1)->UseManualTime()->Iterations(2)->Unit(benchmark::kMillisecond);
