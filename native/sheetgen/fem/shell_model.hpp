@@ -73,7 +73,8 @@ struct ShellModel {
 // Both are kept because which is faster depends on the BLAS: with Debian's
 // reference BLAS (this project's machines) Eigen's simplicial LDL^T beats
 // CHOLMOD's BLAS-bound supernodal LL^T at 5k-20k DOF (docs/fem.md
-// "Benchmarks"); with an optimised BLAS CHOLMOD should win.
+// "Benchmarks"). With OpenBLAS CHOLMOD factors faster, but the composition on
+// it was not reproducible from run to run (docs/benchmarks.md "Session 15").
 enum class ShellSolverBackend {
   kEigenSimplicialLdlt,  // default
   kCholmodSupernodal,
