@@ -74,7 +74,8 @@ struct ShellModel {
 // reference BLAS (this project's machines) Eigen's simplicial LDL^T beats
 // CHOLMOD's BLAS-bound supernodal LL^T at 5k-20k DOF (docs/fem.md
 // "Benchmarks"). With OpenBLAS CHOLMOD factors faster, but the composition on
-// it was not reproducible from run to run (docs/benchmarks.md "Session 15").
+// it was not reproducible from run to run, while on the reference BLAS both
+// backends give the same part (docs/benchmarks.md "Session 15").
 enum class ShellSolverBackend {
   kEigenSimplicialLdlt,  // default
   kCholmodSupernodal,
