@@ -1,6 +1,6 @@
 // Flat-shell FEM speed (docs/fem.md "Benchmarks"): the three-tab bracket of
 // the CalculiX validation test at two mesh sizes (~5 000 and ~20 000 DOF; the
-// cold solve also at ~90 000 and ~190 000 DOF, the size of a bay part's final check),
+// cold solve also at ~87 000 and ~191 000 DOF, the size of a bay part's final check),
 //   BM_FemSolveCold  - a fresh ShellSolver each time: assemble, analyse, factor, solve, stresses;
 //   BM_FemSolveWarm  - one ShellSolver, same pattern: the symbolic analysis is reused;
 //   BM_FemMesh       - the plate mesher on the same polygons;
