@@ -141,6 +141,7 @@ int export_ccx(const ExportCcxArgs& a) {
   const sheetgen::PlateGeometry geometry = sheetgen::plate_geometry_from_json(part->dump(), result_path);
   sheetgen::PartModelOptions model_options;
   model_options.element_size = a.element_size_mm * 1e-3;
+  model_options.self_rivets = sheetgen::self_rivet_ties_from_json(part->dump(), result_path);
   const sheetgen::PartModel model = sheetgen::build_part_model(problem, load_index, geometry, model_options);
   // Write beside the target and rename: a failed run leaves no half-written deck.
   const fs::path out = fs::u8path(out_path);

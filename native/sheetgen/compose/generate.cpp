@@ -369,7 +369,7 @@ nlohmann::json result_json(const Problem& problem, const GenerateResult& result,
       p["rivets"] = rivets;
       json self_rivets = json::array();
       for (const auto& t : c.self_rivets)
-        self_rivets.push_back({{"tabs", {t.polygon_a, t.polygon_b}}, {"point", v3(t.point_a)}});
+        self_rivets.push_back({{"tabs", {t.polygon_a, t.polygon_b}}, {"points", {v3(t.point_a), v3(t.point_b)}}});
       p["self_rivets"] = self_rivets;
       p["bend_sequence"] = o.plan.sequence.order;
       p["flat_pattern"] = flat_pattern_json(o.plan.flat, o.plan.sequence.order);

@@ -8,15 +8,30 @@
 
 namespace sheetgen {
 
+double rivet_diameter(const RivetLayoutOptions& options) {
+  constexpr double inch = 0.0254;
+  return options.diameter > 0 ? options.diameter
+                              : std::max(inch / 8.0, std::ceil(2.0 * options.thickness / (inch / 32.0) - 1e-9) * inch / 32.0);
+}
+
+std::vector<Vec3> rivet_footprint(const Vec3& centre, const Vec3& normal, double radius, int points) {
+  // Any in-plane unit pair: the ring's phase does not matter.
+  const Vec3 u = (std::abs(normal.x()) < 0.9 ? Vec3::UnitX() : Vec3::UnitY()).cross(normal).normalized();
+  const Vec3 v = normal.cross(u);
+  std::vector<Vec3> fp = {centre};
+  for (int k = 0; k < points; ++k) {
+    const double a = 2.0 * M_PI * k / points;
+    fp.push_back(centre + radius * (std::cos(a) * u + std::sin(a) * v));
+  }
+  return fp;
+}
+
 RivetLayout layout_rivets(const std::vector<Vec3>& polygon, int far_edge, const RivetLayoutOptions& options) {
   const int n = static_cast<int>(polygon.size());
   if (n < 3) throw FemError("rivet flange", "polygon has fewer than 3 vertices");
   if (far_edge < 0 || far_edge >= n) throw FemError("rivet flange", "far edge index out of range");
   RivetLayout out;
-  constexpr double inch = 0.0254;
-  out.diameter = options.diameter > 0
-                     ? options.diameter
-                     : std::max(inch / 8.0, std::ceil(2.0 * options.thickness / (inch / 32.0) - 1e-9) * inch / 32.0);
+  out.diameter = rivet_diameter(options);
   out.edge_distance = options.edge_distance > 0 ? options.edge_distance : 2.0 * out.diameter;
   out.pitch = options.pitch > 0 ? options.pitch : 6.0 * out.diameter;
   const double e = out.edge_distance;

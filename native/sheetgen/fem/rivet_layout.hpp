@@ -39,6 +39,13 @@ struct RivetLayout {
   std::vector<Vec3> all_points() const;
 };
 
+// The rivet diameter `options` gives, m (its default when diameter <= 0).
+double rivet_diameter(const RivetLayoutOptions& options);
+
+// A rivet's footprint on a sheet: `centre`, then `points` points on the circle
+// of `radius` (m) about it in the plane normal to `normal` (unit).
+std::vector<Vec3> rivet_footprint(const Vec3& centre, const Vec3& normal, double radius, int points);
+
 // polygon: planar convex, m; far_edge: index i of the edge from vertex i to
 // vertex i+1. Throws FemError when the flange cannot hold one rivet at the
 // edge distance.

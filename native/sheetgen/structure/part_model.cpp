@@ -1,5 +1,6 @@
 #include "sheetgen/structure/part_model.hpp"
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <nlohmann/json.hpp>
@@ -48,9 +49,27 @@ PartModel build_part_model(const Problem& problem, int load_index, const PlateGe
   }
   if (!any_flange)
     throw FemError("part", "has no rivet flange: nothing holds it to the structure (a mechanism)");
+  // Self-rivets: a footprint on each sheet, like a flange rivet's (a centre and
+  // a ring of radius d), so the tie is a small rigid patch whose stiffness
+  // converges under refinement. A tie between two single nodes is
+  // log-singular: on slanted's gusset our shells and CalculiX's S4 on the same
+  // mesh parted by 10 % (docs/fem.md "Self-rivets").
+  const int ring_points = ro.footprint_points;
+  const double tie_radius = rivet_diameter(ro);
+  auto plane_normal = [&](int k) {
+    const auto& poly = geometry.polygons[k];
+    Vec3 n = Vec3::Zero();  // Newell
+    for (size_t i = 0; i < poly.size(); ++i) n += poly[i].cross(poly[(i + 1) % poly.size()]);
+    return Vec3(n.normalized());
+  };
   for (const auto& tie : options.self_rivets) {
-    fixed[tie.polygon_a].push_back(tie.point_a);
-    fixed[tie.polygon_b].push_back(tie.point_b);
+    for (const auto& [k, centre] : {std::pair{tie.polygon_a, tie.point_a}, std::pair{tie.polygon_b, tie.point_b}}) {
+      if (k < 0 || k >= static_cast<int>(geometry.polygons.size()))
+        throw FemError("self-rivet", "names polygon " + std::to_string(k) + " of a part with " +
+                                         std::to_string(geometry.polygons.size()) + " tabs");
+      const auto fp = rivet_footprint(centre, plane_normal(k), tie_radius, ring_points);
+      fixed[k].insert(fixed[k].end(), fp.begin(), fp.end());
+    }
   }
 
   PlateMeshOptions mo;
@@ -95,15 +114,23 @@ PartModel build_part_model(const Problem& problem, int load_index, const PlateGe
     }
   }
 
-  // Self-rivets: rigid ties between the two sheets' nodes.
-  // Tie points were appended after the rivet points, in tie order, per polygon.
+  // Self-rivets: one rigid link per rivet from its centre node on sheet a to
+  // every other node of either sheet inside its footprint (the ring included).
+  // Tie footprints were appended after the flange rivets', in tie order, per polygon.
   std::vector<size_t> next(geometry.polygons.size());
   for (size_t k = 0; k < geometry.polygons.size(); ++k)
     next[k] = geometry.rivet_area[k] >= 0 ? layouts[k].all_points().size() : 0;
+  const double inside = tie_radius * (1 + 1e-9) + 1e-12;
   for (const auto& tie : options.self_rivets) {
-    const int a = pm.mesh.fixed_point_nodes[tie.polygon_a][next[tie.polygon_a]++];
-    const int b = pm.mesh.fixed_point_nodes[tie.polygon_b][next[tie.polygon_b]++];
-    if (a != b) m.rigid_links.push_back(RigidLink{a, {b}});  // the mesher may already have merged the two points into one node
+    const int master = pm.mesh.fixed_point_nodes[tie.polygon_a][next[tie.polygon_a]];
+    next[tie.polygon_a] += 1 + ring_points;
+    next[tie.polygon_b] += 1 + ring_points;
+    std::vector<int> slaves;
+    for (const auto& [k, centre] : {std::pair{tie.polygon_a, tie.point_a}, std::pair{tie.polygon_b, tie.point_b}})
+      for (int v : polygon_nodes[k])
+        if (v != master && (m.nodes[v] - centre).norm() <= inside && std::find(slaves.begin(), slaves.end(), v) == slaves.end())
+          slaves.push_back(v);  // the mesher may have merged coincident points of the two sheets into one node
+    if (!slaves.empty()) m.rigid_links.push_back(RigidLink{master, slaves});
   }
 
   // The load box: rigid, bonded to the base-tab nodes under it (DESIGN.md).
@@ -176,6 +203,36 @@ PlateGeometry plate_geometry_from_json(const std::string& text, const std::strin
     g.rivet_edge.push_back(i == 0 ? 0 : kFarEdge);
   }
   return g;
+}
+
+std::vector<SelfRivetTie> self_rivet_ties_from_json(const std::string& text, const std::string& source) {
+  nlohmann::json doc;
+  try {
+    doc = nlohmann::json::parse(text);
+  } catch (const nlohmann::json::parse_error& e) {
+    throw InputError(source, "", std::string("is not valid JSON (") + e.what() + ")");
+  }
+  std::vector<SelfRivetTie> ties;
+  if (!doc.is_object() || !doc.contains("self_rivets")) return ties;
+  const long long tab_count = doc.contains("tabs") && doc["tabs"].is_array() ? static_cast<long long>(doc["tabs"].size()) : 0;
+  const JsonNode list(doc["self_rivets"], source, "self_rivets");
+  for (size_t k = 0; k < list.size(); ++k) {
+    const JsonNode entry = list.at(k);
+    const JsonNode tabs = entry.at("tabs");
+    if (tabs.size() != 2) tabs.fail("needs the two tied tabs' indices");
+    const JsonNode points = entry.at("points");
+    if (points.size() != 2) points.fail("needs one point on each tied tab (m)");
+    SelfRivetTie tie;
+    for (int s = 0; s < 2; ++s) {
+      const long long i = tabs.at(s).as_integer();
+      if (i < 0 || i >= tab_count) tabs.at(s).fail("is not a tab index of this part (it has " + std::to_string(tab_count) + " tabs)");
+      (s == 0 ? tie.polygon_a : tie.polygon_b) = static_cast<int>(i);
+    }
+    tie.point_a = points.at(0).as_vec3();
+    tie.point_b = points.at(1).as_vec3();
+    ties.push_back(tie);
+  }
+  return ties;
 }
 
 }  // namespace sheetgen

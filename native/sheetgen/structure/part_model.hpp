@@ -84,4 +84,10 @@ StructuralResult analyse_part(const Problem& problem, int load_index, const Plat
 // Throws InputError naming `source` and the field when the JSON is malformed.
 PlateGeometry plate_geometry_from_json(const std::string& json_tabs_text, const std::string& source);
 
+// The self_rivets[] of a sheetgen-result/1 part: per tie the two tab indices
+// and one point on each sheet (m), so a re-analysis (export-ccx) ties what the
+// solver tied. Empty when the part has none. Throws InputError naming
+// `source` and the field when an entry is malformed.
+std::vector<SelfRivetTie> self_rivet_ties_from_json(const std::string& json_part_text, const std::string& source);
+
 }  // namespace sheetgen

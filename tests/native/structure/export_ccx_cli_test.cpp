@@ -122,5 +122,65 @@ TEST(ExportCcxCli, DeckEqualsTheLibraryModel) {
   fs::remove_all(dir);
 }
 
+// A self-riveted part's ties (result.json self_rivets[]) reach the deck: a
+// re-analysis that dropped them would check a softer part than the one solved.
+TEST(ExportCcxCli, SelfRivetTiesReachTheDeck) {
+  const fs::path dir = fs::temp_directory_path() / ("sheetgen export ties " + std::to_string(::getpid()));
+  fs::create_directories(dir);
+  const nlohmann::json problem = nlohmann::json::parse(R"({
+    "format": "sheetgen-problem/1",
+    "environment": {"meshes": [{"name": "floor", "vertices": [[-1,-1,0],[1,-1,0],[1,1,0],[-1,1,0]], "triangles": [[0,1,2],[0,2,3]]}]},
+    "rivet_areas": [{"name": "floor", "mesh": "floor", "faces": [0, 1]}],
+    "loads": [{"name": "box", "center": [0, 0, 0.2], "size": [0.1, 0.1, 0.1], "force": [-200, 0, -350]}]
+  })");
+  std::ofstream(dir / "problem.json") << problem.dump(2);
+  const Problem p = load_problem((dir / "problem.json").string());
+  Part part = make_base_part(p.loads[0], 0, p.material.thickness);
+  const double zb = 0.15 - 0.5 * p.material.thickness;
+  const int leg = part.add_tab(0, 1, TabParameters{0.0, 0.1, zb - 0.5 * p.material.thickness, 0, 0, -M_PI / 2});
+  const int foot = part.add_tab(leg, kFarEdge, TabParameters{0.0, 0.1, 0.03, 0, 0, M_PI / 2}, 0);
+  const RealisedPart rp = realise(part);
+  // A tie from the middle of the leg to the foot near its fold (clear of the
+  // foot's rivets along its far edge; the base is all under the box link): a brace across the fold.
+  auto along = [&](int i, double f) {  // on the centre line of tab i, a fraction f from its root to its far edge
+    const auto& c = rp.tabs[i].corners;
+    return Vec3(0.5 * (c[0] + c[1]) + f * (0.5 * (c[2] + c[3]) - 0.5 * (c[0] + c[1])));
+  };
+  const SelfRivetTie tie{leg, foot, along(leg, 0.5), along(foot, 0.25)};
+  auto v3 = [](const Vec3& q) { return nlohmann::json::array({q.x(), q.y(), q.z()}); };
+  nlohmann::json part_doc = {{"load", "box"}, {"status", "ok"}, {"tabs", part_json(part, rp)},
+                             {"self_rivets", {{{"tabs", {leg, foot}}, {"points", {v3(tie.point_a), v3(tie.point_b)}}}}}};
+  nlohmann::json result = {{"format", "sheetgen-result/1"}, {"problem", "problem.json"}, {"parts", {part_doc}}};
+  std::ofstream(dir / "result.json") << result.dump(2);
+
+  const auto [code, out] = run("export-ccx '" + (dir / "result.json").string() + "' --load box --solve --out '" + (dir / "deck.inp").string() + "'");
+  ASSERT_EQ(code, 0) << out;
+  PartModelOptions tied;
+  tied.self_rivets = {tie};
+  std::ostringstream expected, untied;
+  write_ccx_deck(build_part_model(p, 0, plate_geometry(part, rp), tied).model, expected);
+  write_ccx_deck(build_part_model(p, 0, plate_geometry(part, rp)).model, untied);
+  EXPECT_EQ(slurp(dir / "deck.inp"), expected.str());
+  EXPECT_NE(expected.str(), untied.str());
+  // The printed compliance is the tied part's, and the tie stiffens it (it can only lower f^T u).
+  const double c_tied = analyse_part(p, 0, plate_geometry(part, rp), tied).compliance;
+  const double c_free = analyse_part(p, 0, plate_geometry(part, rp)).compliance;
+  const auto at = out.find("compliance ");
+  ASSERT_NE(at, std::string::npos) << out;
+  EXPECT_NEAR(std::stod(out.substr(at + 11)), c_tied, 1e-7 * c_tied) << out;
+  EXPECT_LT(c_tied, c_free);
+
+  // A tie naming a tab the part does not have: one line naming the field, exit 1, no deck.
+  part_doc["self_rivets"][0]["tabs"] = {0, 7};
+  result["parts"] = {part_doc};
+  std::ofstream(dir / "bad.json") << result.dump(2);
+  const auto [code2, out2] = run("export-ccx '" + (dir / "bad.json").string() + "' --load box --out '" + (dir / "bad.inp").string() + "'");
+  EXPECT_EQ(code2, 1);
+  EXPECT_NE(out2.find("self_rivets[0].tabs[1]"), std::string::npos) << out2;
+  EXPECT_NE(out2.find("is not a tab index of this part (it has 3 tabs)"), std::string::npos) << out2;
+  EXPECT_FALSE(fs::exists(dir / "bad.inp"));
+  fs::remove_all(dir);
+}
+
 }  // namespace
 }  // namespace sheetgen
