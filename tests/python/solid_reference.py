@@ -23,9 +23,14 @@ on a plain fold, a fold end and a 30 deg fold S8R and C3D10 agree within 1.4 %
 solid is a t x t block joining the two plates, the idealisation the shell
 models share (neither has the bend radius).
 
-Limits: a part with self-rivets (two sheets riveted face to face) has no solid
-model here (fused plates would be one sheet); `SolidNotApplicable` says so and
-the caller falls back to the shell deck.
+Self-rivets (two sheets riveted face to face, paper Sec. 5.2): where the two
+sheets touch or overlap (their tie points at most t apart), the fused plates
+bond the lap over its whole overlap. That joint is stiffer than rivets, while
+our shells tie each rivet's footprint (a disc of radius d), a softer one:
+agreement between the two brackets the riveted part. The deck's rigid bodies
+other than the box link are those ties; the bonded lap replaces them. Sheets farther apart would not touch in the solid
+and leave the tie out; `SolidNotApplicable` says so and the caller falls back
+to the shell deck, as it does for a result without the tie points.
 """
 import os
 import re
@@ -172,10 +177,21 @@ def solid_compliance(part, shell_deck, work_dir, h=None):
     on the solid model, with the supports, box link, loads and material of
     `shell_deck` (the text of an S4 deck by `sheetgen export-ccx`). Writes
     solid.inp into work_dir. Returns a dict with C, deflection, nodes, elements, h."""
-    if part.get("self_rivets"):
-        raise SolidNotApplicable("the part has self-rivets (two sheets face to face)")
-    if len(re.findall(r"^\*RIGID BODY", shell_deck, re.M)) != 1:
-        raise SolidNotApplicable("the deck has more than one rigid body")
+    t_section = float(deck_section_lines(shell_deck, "*SHELL SECTION")[0].split(",")[0]) if shell_deck else 0.0
+    for tie in part.get("self_rivets") or []:
+        points = tie.get("points")
+        if not points or len(points) != 2:
+            raise SolidNotApplicable("a self-rivet without its two points (a result from an older sheetgen)")
+        gap = float(np.linalg.norm(np.subtract(points[0], points[1])))
+        if gap > t_section * (1 + 1e-6):
+            raise SolidNotApplicable(f"self-riveted sheets {gap * 1e3:.2f} mm apart would not touch in the fused solid")
+    # The box link is the rigid body whose nodes carry the loads; any other is a
+    # self-rivet's footprint tie, which the fused solid replaces by its bonded lap.
+    bodies = re.findall(r"^\*RIGID BODY, NSET=(\w+), REF NODE=(\d+), ROT NODE=(\d+)", shell_deck, re.M)
+    load_nodes = {int(line.split(",")[0]) for line in deck_section_lines(shell_deck, "*CLOAD")}
+    box = [b for b in bodies if int(b[1]) in load_nodes or int(b[2]) in load_nodes]
+    if len(box) != 1 or len(bodies) - 1 > len(part.get("self_rivets") or []):
+        raise SolidNotApplicable(f"the deck has {len(bodies)} rigid bodies, not the box link and one per self-rivet")
     E, nu = (float(x) for x in deck_section_lines(shell_deck, "*ELASTIC")[0].split(",")[:2])
     t = float(deck_section_lines(shell_deck, "*SHELL SECTION")[0].split(",")[0])
     h = DEFAULT_SIZE * t if h is None else h
@@ -183,9 +199,8 @@ def solid_compliance(part, shell_deck, work_dir, h=None):
     for line in deck_section_lines(shell_deck, "*NODE"):
         a = line.split(",")
         nodes[int(a[0])] = np.array([float(x) for x in a[1:4]])
-    rigid_ids = [int(x) for line in deck_section_lines(shell_deck, "*NSET, NSET=RIGID1") for x in line.split(",") if x.strip()]
-    ref_id = int(re.search(r"REF NODE=(\d+)", shell_deck).group(1))
-    rot_id = int(re.search(r"ROT NODE=(\d+)", shell_deck).group(1))
+    box_set, ref_id, rot_id = box[0][0], int(box[0][1]), int(box[0][2])
+    rigid_ids = [int(x) for line in deck_section_lines(shell_deck, "*NSET, NSET=" + box_set) for x in line.split(",") if x.strip()]
     cloads = []
     for line in deck_section_lines(shell_deck, "*CLOAD"):
         n, dof, value = line.split(",")

@@ -108,11 +108,17 @@ class SolidReference(unittest.TestCase):
         self.assertLess(abs(C8 / C - 1), 0.015)
         self.assertTrue(beam_D < C < beam_EI)
 
-    def test_self_riveted_parts_are_refused(self):
-        # Fused plates would make two riveted sheets one: verify_result falls back to S8R.
-        part = {"tabs": [], "rivets": [], "self_rivets": [{"tabs": [1, 2]}]}
-        with self.assertRaises(solid_reference.SolidNotApplicable):
-            solid_reference.solid_compliance(part, "", self.tmp.name)
+    def test_self_riveted_sheets_apart_are_refused(self):
+        # Sheets more than t apart would not touch in the fused solid (the tie would be
+        # lost), and a result without the tie points cannot be placed: verify_result
+        # falls back to S8R for both.
+        deck = "*SHELL SECTION, ELSET=EALL, MATERIAL=M\n0.0016\n"
+        apart = {"tabs": [], "rivets": [], "self_rivets": [{"tabs": [1, 2], "points": [[0, 0, 0], [0, 0, 0.0025]]}]}
+        with self.assertRaisesRegex(solid_reference.SolidNotApplicable, "2.50 mm apart"):
+            solid_reference.solid_compliance(apart, deck, self.tmp.name)
+        old = {"tabs": [], "rivets": [], "self_rivets": [{"tabs": [1, 2], "point": [0, 0, 0]}]}
+        with self.assertRaisesRegex(solid_reference.SolidNotApplicable, "older sheetgen"):
+            solid_reference.solid_compliance(old, deck, self.tmp.name)
 
 
 if __name__ == "__main__":

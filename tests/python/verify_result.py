@@ -17,8 +17,10 @@ the code that made them (issue 6 acceptance):
   shell decks are meshed from our own triangles, and their 20-node expansion
   (S8R) is 3-10 % softer than the solid on parts whose load passes a fold end,
   where ours is within 3 % of it (docs/fem.md "A solid reference"). S8R and S4
-  are printed beside it; a part the solid model cannot represent (self-rivets)
-  is checked against S8R instead, and the report says so;
+  are printed beside it. Self-riveted sheets that touch are bonded over their
+  overlap in the solid (solid_reference.py); a part the solid model cannot
+  represent (self-riveted sheets apart) is checked against S8R instead, and
+  the report says so;
 * the margin of safety re-computed from CalculiX's stresses on the S4 deck
   (`ccx_max_von_mises`: surface von Mises per element, by the stress rule of
   docs/fem.md applied to CalculiX's own mesh): CalculiX's maximum may exceed
@@ -167,7 +169,8 @@ def ccx_compliance(deck, dat):
     rigid body's ROT node carries the rotations), and |u| of the load's REF node."""
     cloads = [(int(a), int(b), float(c)) for a, b, c in re.findall(r"^\s*(\d+)\s*,\s*(\d+)\s*,\s*([-+0-9.eE]+)\s*$",
                                                                       deck.split("*CLOAD")[1].split("*")[0], re.M)]
-    ref = int(re.search(r"REF NODE=(\d+)", deck).group(1))
+    # The load's REF node carries the force (a self-rivet's rigid body comes first in the deck).
+    ref = next((n for n, d, _ in cloads if d <= 3), None) or int(re.search(r"REF NODE=(\d+)", deck).group(1))
     disp = {}
     for line in dat.split("displacements (vx,vy,vz)")[-1].splitlines():
         p = line.split()
@@ -301,14 +304,18 @@ def check_part(out_dir, prob, meshes, part, args, report, bad):
                 if rm != mname:
                     continue
                 allow = ra == own_ra
-                # The parent of a flange may come near the flange's rivet area inside the bend zone.
-                near = [k for k in children if tabs[k].get("rivet_area", -1) == ra]
+                # A tab may come near the rivet area of a flange across a bend
+                # from it (its parent or a child) inside that bend's zone.
+                roots = [np.array(tabs[k]["corners"]) for k in children if tabs[k].get("rivet_area", -1) == ra]
+                parent = tab["parent"]
+                if parent >= 0 and tabs[parent].get("rivet_area", -1) == ra:
+                    roots.append(np.array(tab["corners"]))
                 if allow:
                     keep[list(faces)] = False
-                elif near:
-                    k = near[0]
-                    c = np.array(tabs[k]["corners"])
-                    zone = distance_to_segment(P, c[0], c[1]) < band
+                elif roots:
+                    zone = np.zeros(len(P), bool)
+                    for c in roots:
+                        zone |= distance_to_segment(P, c[0], c[1]) < band
                     Fr = F[list(faces)]
                     d_ra = point_triangle_distance(P[~zone], V[Fr[:, 0]], V[Fr[:, 1]], V[Fr[:, 2]]).min(axis=1) if (~zone).any() else []
                     if len(d_ra):
