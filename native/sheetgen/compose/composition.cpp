@@ -141,10 +141,15 @@ std::vector<Candidate> self_rivet_variants(const Problem& problem, const Candida
       v.self_rivets.push_back(SelfRivetTie{plan.tab_a, plan.tab_b, plan.rivets_a[r], plan.rivets_b[r]});
     return v;
   };
+  // A pair whose edge is too short for a gusset gets one on the tab lengthened.
+  auto plans_for = [&](const Part& part, const RealisedPart& realised, const VisiblePair& pair) {
+    auto plans = gusset_plans(part, realised, pair, problem);
+    return plans.empty() ? lengthened_gusset_plans(part, realised, pair, problem) : plans;
+  };
   const RealisedPart rp = realise(c.part);
   static const bool dbg = std::getenv("SHEETGEN_COMPOSE_DEBUG") != nullptr;
   for (const VisiblePair& pair : visible_edge_pairs(c.part, rp, problem.material.thickness)) {
-    const auto plans = gusset_plans(c.part, rp, pair, problem);
+    const auto plans = plans_for(c.part, rp, pair);
     if (dbg)  // a visible pair without a plan: its edges are too short or too obtuse for a gusset
       std::fprintf(stderr, "[self-rivet] pair tabs %d/%d edges %d/%d, gap %.1f mm, tree distance %d: %zu plans\n", pair.a.tab,
                    pair.b.tab, pair.a.edge, pair.b.edge, pair.gap * 1e3, pair.tree_distance, plans.size());
@@ -157,7 +162,7 @@ std::vector<Candidate> self_rivet_variants(const Problem& problem, const Candida
     const Candidate& first = out.front();
     const RealisedPart rp2 = realise(first.part);
     for (const VisiblePair& pair : visible_edge_pairs(first.part, rp2, problem.material.thickness)) {
-      const auto plans = gusset_plans(first.part, rp2, pair, problem);
+      const auto plans = plans_for(first.part, rp2, pair);
       if (plans.empty()) continue;
       out.push_back(with_plan(first, plans.front()));
       break;

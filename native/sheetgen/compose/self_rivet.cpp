@@ -216,4 +216,59 @@ std::vector<SelfRivetPlan> gusset_plans(const Part& part, const RealisedPart& rp
   return plans;
 }
 
+std::vector<SelfRivetPlan> lengthened_gusset_plans(const Part& part, const RealisedPart& rp, const VisiblePair& pair,
+                                                   const Problem& problem) {
+  const Manufacturing& mf = problem.manufacturing;
+  const SheetSpec spec = SheetSpec::from(problem);
+  // The shortest side edge a square gusset of minimum width fits on: the
+  // gusset's bend zone kept from both ends (gusset_plans' margin, taken at the
+  // 90 deg a corner gusset has; steeper folds need more and are left to
+  // gusset_plans to refuse) and the tab's own root bend zone (free_edge_span).
+  auto shortest = [&](const FreeEdge& e) {
+    const double margin = bend_zone_depth(M_PI / 2, spec) + 0.5e-3;
+    return mf.min_tab_width + 2 * margin + bend_setback(part.tabs[e.tab].params.theta3, spec) + 0.5e-3 + 1e-3;
+  };
+  auto growable = [&](const FreeEdge& e) {
+    const Tab& t = part.tabs[e.tab];
+    return e.tab != 0 && (e.edge == kStartSideEdge || e.edge == kEndSideEdge) && part.children(e.tab).empty() &&
+           t.riveted_to < 0;
+  };
+  const bool short_a = pair.a.length < shortest(pair.a), short_b = pair.b.length < shortest(pair.b);
+  if (!short_a && !short_b) return {};
+  if ((short_a && !growable(pair.a)) || (short_b && !growable(pair.b))) return {};
+
+  auto tab_area = [](const RealisedPart& r, int i) { return std::abs(signed_area(r.tabs[i].local)); };
+  std::vector<SelfRivetPlan> out;
+  for (double factor : {1.0, 1.2, 1.4, 1.7, 2.0, 2.5}) {
+    Part grown = part;
+    for (const FreeEdge* e : {&pair.a, &pair.b}) {
+      if (e->length >= shortest(*e)) continue;
+      // The side edge's length grows with l by 1/cos(theta2) (docs/grammar.md);
+      // theta1 tilts the far edge about its midpoint and does not change that rate.
+      TabParameters& tp = grown.tabs[e->tab].params;
+      tp.l = std::min(mf.max_tab_length, tp.l + (factor * shortest(*e) - e->length) * std::cos(tp.theta2));
+    }
+    const RealisedPart grp = realise(grown);
+    auto find = [&](const FreeEdge& e) -> std::optional<FreeEdge> {
+      for (const FreeEdge& f : grp.free_edges())
+        if (f.tab == e.tab && f.edge == e.edge) return f;
+      return std::nullopt;
+    };
+    const std::optional<FreeEdge> a = find(pair.a), b = find(pair.b);
+    if (!a || !b || grp.tabs[pair.a.tab].degenerate || grp.tabs[pair.b.tab].degenerate) continue;
+    // A side edge grows along its own line, so the two edges stay in the common plane.
+    VisiblePair grown_pair = pair;
+    grown_pair.a = *a;
+    grown_pair.b = *b;
+    // m^2; the two tabs of a visible pair are distinct.
+    const double extension = tab_area(grp, pair.a.tab) - tab_area(rp, pair.a.tab) + tab_area(grp, pair.b.tab) - tab_area(rp, pair.b.tab);
+    for (SelfRivetPlan& plan : gusset_plans(grown, grp, grown_pair, problem)) {
+      plan.added_area += extension;
+      out.push_back(std::move(plan));
+    }
+  }
+  std::stable_sort(out.begin(), out.end(), [](const SelfRivetPlan& x, const SelfRivetPlan& y) { return x.added_area < y.added_area; });
+  return out;
+}
+
 }  // namespace sheetgen

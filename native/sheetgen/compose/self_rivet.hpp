@@ -46,4 +46,14 @@ std::vector<VisiblePair> visible_edge_pairs(const Part& part, const RealisedPart
 std::vector<SelfRivetPlan> gusset_plans(const Part& part, const RealisedPart& realised, const VisiblePair& pair,
                                         const Problem& problem);
 
+// Gussets for a pair whose edge is too short for one: the side edge of a leaf
+// tab (a minimum-length rivet flange is 6 mm long) has no room for a gusset
+// root between the bend zones at its ends. That tab is lengthened along its
+// side edge, to the shortest length a minimum-width gusset fits and to twice
+// that, and gusset_plans is run on the lengthened part. added_area counts the
+// extension too. Empty when neither edge is short or a short one cannot grow
+// (the base, a tab with children or a self-rivet tab).
+std::vector<SelfRivetPlan> lengthened_gusset_plans(const Part& part, const RealisedPart& realised, const VisiblePair& pair,
+                                                   const Problem& problem);
+
 }  // namespace sheetgen

@@ -6,6 +6,11 @@
 
 #include "sheet_rules.hpp"
 
+#include <filesystem>
+
+#include "sheetgen/fem/ccx_export.hpp"
+#include "sheetgen/fem/rivet_layout.hpp"
+
 #include "sheetgen/env/environment.hpp"
 #include "sheetgen/core/polygon_geometry.hpp"
 #include "sheetgen/part/validity.hpp"
@@ -141,6 +146,120 @@ TEST(SelfRivet, GussetsFitIntoAnAcuteCorner) {
   std::printf("acute corner: %d gusset plans, %d valid\n", plans_seen, valid);
   EXPECT_GT(plans_seen, 0);
   EXPECT_GT(valid, 0);
+}
+
+// A 20 mm rivet flange (about the shortest that holds a rivet row: 7.2 mm bend setback + 2 x 6.35 mm edge distance) has side edges too short for a gusset
+// root between the bend zones at their ends. Lengthening the flange gives it
+// one: the plans' added area is what the part grew by (flange extension and
+// both gussets), and the riveted gusset stiffens the springboard.
+TEST(SelfRivet, ShortFlangeIsLengthenedForItsGusset) {
+  const Problem p = wall_problem();
+  Part part = make_base_part(p.loads[0], 0, p.material.thickness);
+  part.add_tab(0, 3, TabParameters{0.0, 0.1, 0.02, 0, 0, -M_PI / 2}, 0);
+  const RealisedPart rp = realise(part);
+  const Environment env(p);
+  ValidityOptions vo;
+  ASSERT_TRUE(check_validity(part, rp, env, vo).valid()) << check_validity(part, rp, env, vo).summary();
+  auto area = [](const RealisedPart& r) {
+    double a = 0;
+    for (const auto& t : r.tabs) a += std::abs(signed_area(t.local));
+    return a;
+  };
+  const double plain_compliance = analyse_part(p, 0, plate_geometry(part, rp)).compliance;
+  int short_pairs = 0, valid = 0;
+  for (const auto& pr : visible_edge_pairs(part, rp, p.material.thickness)) {
+    if (!((pr.a.tab == 0 && pr.b.tab == 1) || (pr.a.tab == 1 && pr.b.tab == 0)) || std::abs(pr.plane_normal.y()) < 1 - 1e-9) continue;
+    EXPECT_TRUE(gusset_plans(part, rp, pr, p).empty());  // 20 mm: no room between the bend zones
+    ++short_pairs;
+    const auto plans = lengthened_gusset_plans(part, rp, pr, p);
+    ASSERT_FALSE(plans.empty());
+    for (size_t k = 1; k < plans.size(); ++k) EXPECT_LE(plans[k - 1].added_area, plans[k].added_area);  // lightest first
+    for (const auto& plan : plans) {
+      const RealisedPart grp = realise(plan.part);
+      EXPECT_GT(plan.part.tabs[1].params.l, 0.02);
+      EXPECT_NEAR(plan.added_area, area(grp) - area(rp), 1e-9);
+      if (!check_validity(plan.part, grp, env, vo).valid()) continue;
+      ++valid;
+      PartModelOptions mo;
+      for (size_t r = 0; r < plan.rivets_a.size(); ++r)
+        mo.self_rivets.push_back(SelfRivetTie{plan.tab_a, plan.tab_b, plan.rivets_a[r], plan.rivets_b[r]});
+      const double riveted = analyse_part(p, 0, plate_geometry(plan.part, grp), mo).compliance;
+      const double loose = analyse_part(p, 0, plate_geometry(plan.part, grp)).compliance;
+      // The longer flange moves its rivet row (along its far edge) away from the
+      // bend, which softens the part; the tie is what must stiffen it.
+      std::printf("flange 20.0 -> %.1f mm, +%.1f cm^2: compliance %.4g J; lengthened with loose gussets %.4g J, riveted %.4g J\n",
+                  plan.part.tabs[1].params.l * 1e3, plan.added_area * 1e4, plain_compliance, loose, riveted);
+      EXPECT_LT(riveted, 0.8 * loose);
+      break;
+    }
+  }
+  EXPECT_EQ(short_pairs, 2);  // the side planes y = -0.05 and y = +0.05
+  EXPECT_GT(valid, 0);
+}
+
+// A self-rivet ties its whole footprint on both sheets (every node within d
+// of its centre, as a flange rivet clamps its own), so its stiffness
+// converges under refinement and CalculiX, on the same deck, agrees.
+TEST(SelfRivet, TieFootprintIsWholeConvergesAndAgreesWithCalculix) {
+  const Problem p = wall_problem();
+  const Part part = springboard(p);
+  const RealisedPart rp = realise(part);
+  const Environment env(p);
+  ValidityOptions vo;
+  const SelfRivetPlan* chosen = nullptr;
+  std::vector<SelfRivetPlan> plans;
+  for (const auto& pr : visible_edge_pairs(part, rp, p.material.thickness))
+    if (((pr.a.tab == 0 && pr.b.tab == 1) || (pr.a.tab == 1 && pr.b.tab == 0)) && std::abs(pr.plane_normal.y()) > 1 - 1e-9) {
+      plans = gusset_plans(part, rp, pr, p);
+      break;
+    }
+  for (const auto& plan : plans)
+    if (check_validity(plan.part, realise(plan.part), env, vo).valid()) {
+      chosen = &plan;
+      break;
+    }
+  ASSERT_NE(chosen, nullptr);
+  const RealisedPart grp = realise(chosen->part);
+  const PlateGeometry g = plate_geometry(chosen->part, grp);
+  auto options = [&](double h) {
+    PartModelOptions mo;
+    mo.element_size = h;
+    for (size_t r = 0; r < chosen->rivets_a.size(); ++r)
+      mo.self_rivets.push_back(SelfRivetTie{chosen->tab_a, chosen->tab_b, chosen->rivets_a[r], chosen->rivets_b[r]});
+    return mo;
+  };
+  // Every node of either gusset within d of a rivet centre follows that rivet's link.
+  const PartModel fine = build_part_model(p, 0, g, options(1.5e-3));
+  RivetLayoutOptions ro;
+  ro.thickness = p.material.thickness;
+  ro.diameter = p.manufacturing.rivet_diameter;
+  const double d = rivet_diameter(ro);  // the footprint radius (docs/fem.md "Rivets")
+  std::vector<char> linked(fine.model.nodes.size(), 0);
+  for (const RigidLink& l : fine.model.rigid_links) {
+    linked[l.master] = 1;
+    for (int v : l.slaves) linked[v] = 1;
+  }
+  int inside = 0;
+  for (size_t v = 0; v < fine.model.nodes.size(); ++v)
+    for (size_t r = 0; r < chosen->rivets_a.size(); ++r)
+      for (const Vec3& c : {chosen->rivets_a[r], chosen->rivets_b[r]})
+        if ((fine.model.nodes[v] - c).norm() <= d * (1 + 1e-9)) {
+          ++inside;
+          EXPECT_TRUE(linked[v]) << "node " << v << " is inside a self-rivet footprint but not tied";
+        }
+  EXPECT_GT(inside, static_cast<int>(chosen->rivets_a.size()) * 7);  // more than centre + ring on a sheet
+  // Converged: within 1 % from h = 3 to 1.5 mm.
+  const double c3 = analyse_part(p, 0, g, options(3e-3)).compliance, c15 = analyse_part(p, 0, g, options(1.5e-3)).compliance;
+  // CalculiX S4 on the same deck (ties as rigid bodies), at 3 mm.
+  const PartModel mid = build_part_model(p, 0, g, options(3e-3));
+  const auto dir = std::filesystem::temp_directory_path() / ("sheetgen_self_rivet_" + std::to_string(::getpid()));
+  std::filesystem::create_directories(dir);
+  const CcxSolution ccx = solve_with_ccx(mid.model, dir.string(), "gusset");
+  std::filesystem::remove_all(dir);
+  std::printf("gusseted springboard: compliance %.6g J at h = 3 mm, %.6g J at 1.5 mm; CalculiX S4 %.6g J at 3 mm\n", c3, c15,
+              ccx.compliance);
+  EXPECT_NEAR(c15 / c3, 1.0, 0.01);
+  EXPECT_NEAR(c3 / ccx.compliance, 1.0, 0.03);
 }
 
 }  // namespace
