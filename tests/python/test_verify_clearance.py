@@ -1,7 +1,8 @@
 """verify_result.py's brute-force clearance check on hand-made parts with known
 distances: a tab next to a rivet flange may come within t/2 of that flange's
 rivet area inside the bend zone between them, whichever of the two is the
-parent (check_validity's rule, docs/grammar.md); anywhere else it may not."""
+parent (check_validity's rule, docs/grammar.md); anywhere else it may not. And
+the parts of a multi-load problem keep the clearance from each other's faces."""
 import argparse
 import os
 import sys
@@ -68,6 +69,35 @@ class FlangeBendZone(unittest.TestCase):
         tabs[2]["parent"] = 0  # the same tab, hung from the base: no bend joins it to the flange
         report, bad = run(tabs)
         self.assertTrue(any("tab 2 is 0.800 mm from an obstacle" in b for b in bad), bad)
+
+
+class PartsAvoidEachOther(unittest.TestCase):
+    """A later part's clearance counts both faces of every earlier part's tabs."""
+
+    def plate(self, z):
+        return {"parent": -1, "rivet_area": -1, "corners": [[0.3, -0.05, z], [0.4, -0.05, z], [0.4, 0.05, z], [0.3, 0.05, z]]}
+
+    def check(self, gap):
+        earlier = {"load": "first", "tabs": [self.plate(0.3)]}
+        later = {"load": "box", "tabs": [self.plate(0.3 + gap)]}
+        report, bad = [], []
+        ms = {**meshes(), "part:first": verify_result.part_faces(earlier, T)}
+        try:
+            verify_result.check_part("/nonexistent", problem(), ms, later, argparse.Namespace(no_ccx=True), report, bad)
+        except FileNotFoundError:
+            pass
+        return report, bad
+
+    def test_faces_not_mid_surfaces(self):
+        # Mid-surfaces 2.6 mm apart: the sheets' facing surfaces are 1.0 mm apart,
+        # 1.8 mm from the later mid-surface to the earlier part's top face = required.
+        report, bad = self.check(2.6e-3)
+        self.assertEqual(bad, [], report)
+        self.assertTrue(any("min clearance 1.800 mm" in r for r in report), report)
+
+    def test_too_close(self):
+        report, bad = self.check(1.5e-3)  # 0.7 mm to the face, below 1.8 - 0.8 mm tolerance
+        self.assertTrue(any("tab 0 is 0.700 mm from an obstacle" in b for b in bad), bad)
 
 
 if __name__ == "__main__":
