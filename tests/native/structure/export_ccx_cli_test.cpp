@@ -37,21 +37,39 @@ std::string slurp(const fs::path& p) {
   return ss.str();
 }
 
-TEST(ExportCcxCli, DeckEqualsTheLibraryModel) {
-  const fs::path dir = fs::temp_directory_path() / ("sheetgen export ccx " + std::to_string(::getpid()));  // a space on purpose
-  fs::create_directories(dir);
+// A 10 cm box 15 cm above a floor that is one rivet area, written to
+// dir/problem.json with `force` (N, JSON array), and a part: the base under the
+// box, a leg folded down from its edge 1, a foot folded onto the floor.
+struct LegAndFoot {
+  Problem problem;
+  Part part;
+  int leg = -1, foot = -1;
+};
+
+LegAndFoot leg_and_foot(const fs::path& dir, const std::string& force) {
   const nlohmann::json problem = nlohmann::json::parse(R"({
     "format": "sheetgen-problem/1",
     "environment": {"meshes": [{"name": "floor", "vertices": [[-1,-1,0],[1,-1,0],[1,1,0],[-1,1,0]], "triangles": [[0,1,2],[0,2,3]]}]},
     "rivet_areas": [{"name": "floor", "mesh": "floor", "faces": [0, 1]}],
-    "loads": [{"name": "box", "center": [0, 0, 0.2], "size": [0.1, 0.1, 0.1], "force": [0, 0, -350]}]
+    "loads": [{"name": "box", "center": [0, 0, 0.2], "size": [0.1, 0.1, 0.1], "force": )" + force + R"(}]
   })");
   std::ofstream(dir / "problem.json") << problem.dump(2);
-  const Problem p = load_problem((dir / "problem.json").string());
-  Part part = make_base_part(p.loads[0], 0, p.material.thickness);
-  const double zb = 0.15 - 0.5 * p.material.thickness;
-  const int leg = part.add_tab(0, 1, TabParameters{0.0, 0.1, zb - 0.5 * p.material.thickness, 0, 0, -M_PI / 2});
-  part.add_tab(leg, kFarEdge, TabParameters{0.0, 0.1, 0.03, 0, 0, M_PI / 2}, 0);
+  LegAndFoot f;
+  f.problem = load_problem((dir / "problem.json").string());
+  const double t = f.problem.material.thickness;
+  f.part = make_base_part(f.problem.loads[0], 0, t);
+  const double zb = 0.15 - 0.5 * t;  // base mid-surface height
+  f.leg = f.part.add_tab(0, 1, TabParameters{0.0, 0.1, zb - 0.5 * t, 0, 0, -M_PI / 2});
+  f.foot = f.part.add_tab(f.leg, kFarEdge, TabParameters{0.0, 0.1, 0.03, 0, 0, M_PI / 2}, 0);
+  return f;
+}
+
+TEST(ExportCcxCli, DeckEqualsTheLibraryModel) {
+  const fs::path dir = fs::temp_directory_path() / ("sheetgen export ccx " + std::to_string(::getpid()));  // a space on purpose
+  fs::create_directories(dir);
+  const LegAndFoot f = leg_and_foot(dir, "[0, 0, -350]");
+  const Problem& p = f.problem;
+  const Part& part = f.part;
   const RealisedPart rp = realise(part);
   nlohmann::json result = {{"format", "sheetgen-result/1"}, {"problem", "problem.json"},
                            {"parts", {{{"load", "box"}, {"status", "ok"}, {"tabs", part_json(part, rp)}}}}};
@@ -127,18 +145,10 @@ TEST(ExportCcxCli, DeckEqualsTheLibraryModel) {
 TEST(ExportCcxCli, SelfRivetTiesReachTheDeck) {
   const fs::path dir = fs::temp_directory_path() / ("sheetgen export ties " + std::to_string(::getpid()));
   fs::create_directories(dir);
-  const nlohmann::json problem = nlohmann::json::parse(R"({
-    "format": "sheetgen-problem/1",
-    "environment": {"meshes": [{"name": "floor", "vertices": [[-1,-1,0],[1,-1,0],[1,1,0],[-1,1,0]], "triangles": [[0,1,2],[0,2,3]]}]},
-    "rivet_areas": [{"name": "floor", "mesh": "floor", "faces": [0, 1]}],
-    "loads": [{"name": "box", "center": [0, 0, 0.2], "size": [0.1, 0.1, 0.1], "force": [-200, 0, -350]}]
-  })");
-  std::ofstream(dir / "problem.json") << problem.dump(2);
-  const Problem p = load_problem((dir / "problem.json").string());
-  Part part = make_base_part(p.loads[0], 0, p.material.thickness);
-  const double zb = 0.15 - 0.5 * p.material.thickness;
-  const int leg = part.add_tab(0, 1, TabParameters{0.0, 0.1, zb - 0.5 * p.material.thickness, 0, 0, -M_PI / 2});
-  const int foot = part.add_tab(leg, kFarEdge, TabParameters{0.0, 0.1, 0.03, 0, 0, M_PI / 2}, 0);
+  const LegAndFoot f = leg_and_foot(dir, "[-200, 0, -350]");
+  const Problem& p = f.problem;
+  const Part& part = f.part;
+  const int leg = f.leg, foot = f.foot;
   const RealisedPart rp = realise(part);
   // A tie from the middle of the leg to the foot near its fold (clear of the
   // foot's rivets along its far edge; the base is all under the box link): a brace across the fold.
