@@ -28,8 +28,8 @@ sheets touch or overlap (their tie points at most t apart), the fused plates
 bond the lap over its whole overlap. That joint is stiffer than rivets, while
 our shells tie each rivet's footprint (a disc of radius d), a softer one:
 agreement between the two brackets the riveted part. The deck's rigid bodies
-other than the box link are those ties; the bonded lap replaces them. Sheets farther apart would not touch in the solid
-and leave the tie out; `SolidNotApplicable` says so and the caller falls back
+other than the box link are those ties; the bonded lap replaces them. Sheets
+farther apart would not touch in the solid and leave the tie out; `SolidNotApplicable` says so and the caller falls back
 to the shell deck, as it does for a result without the tie points.
 """
 import os
@@ -177,13 +177,13 @@ def solid_compliance(part, shell_deck, work_dir, h=None):
     on the solid model, with the supports, box link, loads and material of
     `shell_deck` (the text of an S4 deck by `sheetgen export-ccx`). Writes
     solid.inp into work_dir. Returns a dict with C, deflection, nodes, elements, h."""
-    t_section = float(deck_section_lines(shell_deck, "*SHELL SECTION")[0].split(",")[0]) if shell_deck else 0.0
+    t = float(deck_section_lines(shell_deck, "*SHELL SECTION")[0].split(",")[0]) if shell_deck else 0.0
     for tie in part.get("self_rivets") or []:
         points = tie.get("points")
         if not points or len(points) != 2:
             raise SolidNotApplicable("a self-rivet without its two points (a result from an older sheetgen)")
         gap = float(np.linalg.norm(np.subtract(points[0], points[1])))
-        if gap > t_section * (1 + 1e-6):
+        if gap > t * (1 + 1e-6):
             raise SolidNotApplicable(f"self-riveted sheets {gap * 1e3:.2f} mm apart would not touch in the fused solid")
     # The box link is the rigid body whose nodes carry the loads; any other is a
     # self-rivet's footprint tie, which the fused solid replaces by its bonded lap.
@@ -193,7 +193,6 @@ def solid_compliance(part, shell_deck, work_dir, h=None):
     if len(box) != 1 or len(bodies) - 1 > len(part.get("self_rivets") or []):
         raise SolidNotApplicable(f"the deck has {len(bodies)} rigid bodies, not the box link and one per self-rivet")
     E, nu = (float(x) for x in deck_section_lines(shell_deck, "*ELASTIC")[0].split(",")[:2])
-    t = float(deck_section_lines(shell_deck, "*SHELL SECTION")[0].split(",")[0])
     h = DEFAULT_SIZE * t if h is None else h
     nodes = {}
     for line in deck_section_lines(shell_deck, "*NODE"):
