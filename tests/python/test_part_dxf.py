@@ -3,7 +3,9 @@
 laser shop relies on (docs/manufacturing.md): R12, millimetres, layers CUT /
 BEND_UP / BEND_DOWN / ANNOTATION, a DASHED linetype on the bend lines, one
 closed outline whose area matches the plan, one bend line per bend on the layer
-of its direction, and the bend number + angle as TEXT on ANNOTATION only.
+of its direction, the bend number + angle as TEXT on ANNOTATION only, and the
+rivet holes as CIRCLEs on RIVET_HOLES / SELF_RIVET_HOLES where the plan puts
+them, each inside the outline, with a "S<n> AFTER B<k>" note per self-rivet hole.
 
 Usage (exits non-zero on failure):
   /usr/bin/python3 test_part_dxf.py --writer build/tests/native/sheetgen_part_tests
@@ -25,6 +27,7 @@ import ezdxf
 # The sample part of tests/native/part/exports_test.cpp: (direction, angle_deg, length_mm).
 SAMPLE_BENDS = sorted([("UP", 90.0, 20.0), ("DOWN", 90.0, 16.0), ("DOWN", 45.0, 20.0), ("UP", 120.0, 20.0)])
 LABEL = re.compile(r"^B(\d+) (UP|DOWN) ([0-9]+\.[0-9]+)(?:%%d|°)$")
+NOTE = re.compile(r"^S(\d+)(?: AFTER B(\d+))?$")
 
 
 def write_sample(writer, out_dir):
@@ -99,13 +102,19 @@ def check_dxf(path, expected):
     on_annotation = [e.dxftype() for e in msp if e.dxf.layer == "ANNOTATION" and e.dxftype() != "TEXT"]
     if on_annotation:
         bad.append(f"ANNOTATION holds non-text entities {on_annotation}")
-    labels = []
+    labels, notes = [], []
     for e in texts:
         m = LABEL.match(e.dxf.text)
+        if NOTE.match(e.dxf.text):
+            notes.append(e.dxf.text)
+            continue
         if not m:
-            bad.append(f"annotation {e.dxf.text!r} is not 'B<n> UP|DOWN <deg>%%d'")
+            bad.append(f"annotation {e.dxf.text!r} is not 'B<n> UP|DOWN <deg>%%d' nor 'S<n> AFTER B<k>'")
             continue
         labels.append((int(m.group(1)), m.group(2), float(m.group(3))))
+    if sorted(notes) != sorted(expected.get("notes", [])):
+        bad.append(f"self-rivet notes {sorted(notes)}, want {sorted(expected.get('notes', []))}")
+    bad += check_holes(msp, outlines[0] if len(outlines) == 1 else None, expected.get("holes", []))
     numbers = sorted(n for n, _, _ in labels)
     if numbers != list(range(1, len(want) + 1)):
         bad.append(f"bend numbers {numbers}, want 1..{len(want)}")
@@ -116,8 +125,42 @@ def check_dxf(path, expected):
             continue
         if direction != ref["direction"] or abs(angle - ref["angle_deg"]) > 5e-4:
             bad.append(f"B{n}: annotated {direction} {angle}, plan says {ref['direction']} {ref['angle_deg']:.4f}")
-    if len(texts) != len(lines["BEND_UP"]) + len(lines["BEND_DOWN"]):
-        bad.append(f"{len(texts)} annotations for {len(lines['BEND_UP']) + len(lines['BEND_DOWN'])} bend lines")
+    if len(labels) != len(lines["BEND_UP"]) + len(lines["BEND_DOWN"]):
+        bad.append(f"{len(labels)} bend labels for {len(lines['BEND_UP']) + len(lines['BEND_DOWN'])} bend lines")
+    return bad
+
+
+def inside(p, poly):
+    """Even-odd point in polygon."""
+    x, y = p
+    c = False
+    for (x1, y1), (x2, y2) in zip(poly, poly[-1:] + poly[:-1]):
+        if (y1 > y) != (y2 > y) and x < (x2 - x1) * (y - y1) / (y2 - y1) + x1:
+            c = not c
+    return c
+
+
+def check_holes(msp, outline, want):
+    """CIRCLEs on the hole layers against the expected holes (layer, centre, diameter in mm)."""
+    bad = []
+    got = [(e.dxf.layer, e.dxf.center.x, e.dxf.center.y, 2 * e.dxf.radius) for e in msp if e.dxftype() == "CIRCLE"]
+    stray = [g[0] for g in got if g[0] not in ("RIVET_HOLES", "SELF_RIVET_HOLES")]
+    if stray:
+        bad.append(f"CIRCLEs on layers {stray}; holes belong on RIVET_HOLES or SELF_RIVET_HOLES")
+    if len(got) != len(want):
+        bad.append(f"{len(got)} holes, want {len(want)}")
+    for w in want:
+        match = [g for g in got if g[0] == w["layer"] and math.hypot(g[1] - w["x_mm"], g[2] - w["y_mm"]) < 1e-5]
+        if len(match) != 1:
+            bad.append(f"no hole on {w['layer']} at ({w['x_mm']:.4f}, {w['y_mm']:.4f}) mm")
+        elif abs(match[0][3] - w["diameter_mm"]) > 1e-5:
+            bad.append(f"hole at ({w['x_mm']:.4f}, {w['y_mm']:.4f}) is {match[0][3]:.5f} mm across, "
+                       f"want {w['diameter_mm']:.5f}")
+    if outline is not None:
+        pts = [(v.dxf.location.x, v.dxf.location.y) for v in outline.vertices]
+        for g in got:
+            if not inside((g[1], g[2]), pts):
+                bad.append(f"hole at ({g[1]:.3f}, {g[2]:.3f}) mm is outside the outline")
     return bad
 
 
@@ -128,6 +171,9 @@ def check_sample(dxf):
     got = sorted((b["direction"], round(b["angle_deg"], 9), round(b["length_mm"], 9)) for b in expected["bends"])
     if got != SAMPLE_BENDS:
         bad.append(f"sample bends {got}, want {SAMPLE_BENDS}")
+    layers = sorted(h["layer"] for h in expected.get("holes", []))
+    if layers != ["RIVET_HOLES", "SELF_RIVET_HOLES", "SELF_RIVET_HOLES"]:
+        bad.append(f"sample holes on {layers}, want one rivet and one self-rivet (two holes)")
     return bad
 
 

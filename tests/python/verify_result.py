@@ -27,6 +27,10 @@ the code that made them (issue 6 acceptance):
   the stress at which MS equals the requirement by at most STRESS_TOLERANCE;
 * the DXF's CUT outline, read by ezdxf, is one simple closed polygon (shapely)
   whose area equals the flat-pattern area in result.json;
+* the DXF's rivet holes (check_holes): one per rivet and two per self-rivet,
+  sized for the rivet, their centres the rivet edge distance from every cut
+  edge and from every bend zone (flat sheet only), keeping per tab the distances of
+  their rivets on the bent part, and a self-rivet's two holes meeting when bent;
 * parts of a multi-load problem avoid each other: each part's clearance is
   also measured to both faces of every part before it in result.json (the
   order sheetgen solves the loads in, each part an obstacle for the later ones).
@@ -35,6 +39,7 @@ Usage: verify_result.py OUT_DIR [--sheetgen build/native/cli/sheetgen] [--no-ccx
 Exits 1 with one line per failure; prints the measured numbers.
 """
 import argparse
+import csv as csv_mod
 import json
 import math
 import os
@@ -45,7 +50,7 @@ import tempfile
 
 import ezdxf
 import numpy as np
-from shapely.geometry import Polygon
+from shapely.geometry import Point, Polygon
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import solid_reference  # noqa: E402
@@ -419,6 +424,122 @@ def check_part(out_dir, prob, meshes, part, args, report, bad):
             bad.append(f"{name}: DXF outline is not a simple closed polygon")
         if abs(poly.area - area_mm2) > 1e-6 * area_mm2:
             bad.append(f"{name}: DXF area {poly.area:.3f} mm^2 differs from result.json {area_mm2:.3f} mm^2")
+    check_holes(out_dir, prob, part, report, bad)
+
+
+def rivet_shank_diameter(prob, t):
+    """The rivet diameter d the problem asks for (m): manufacturing.rivet_diameter, else
+    2 t rounded up to 1/32 in and at least 1/8 in (DESIGN.md's default)."""
+    d = prob.get("manufacturing", {}).get("rivet_diameter", 0.0) or 0.0
+    if d > 0:
+        return d
+    step = 0.0254 / 32
+    return max(math.ceil(2 * t / step - 1e-9) * step, 0.0254 / 8)
+
+
+def tab_plane(corners):
+    C = np.array(corners, float)
+    n = np.zeros(3)
+    for i in range(len(C)):  # Newell
+        n += np.cross(C[i], C[(i + 1) % len(C)])
+    return C, n / np.linalg.norm(n)
+
+
+def check_holes(out_dir, prob, part, report, bad):
+    """The rivet and self-rivet holes of flat.dxf (ezdxf) against result.json's
+    rivets: one CIRCLE per rivet on RIVET_HOLES and two per self-rivet on
+    SELF_RIVET_HOLES, a rivet of diameter d fits with at most 0.2 mm play, each
+    hole lies inside the outline by at least its radius. rivets.csv names each
+    hole's tab; with it, the holes of one tab must keep in the flat the
+    distances their rivets have on the bent tab (bending is rigid per tab), and
+    the two holes of a self-rivet must meet when bent (within 1.5 t, the
+    stacking offset of two sheets)."""
+    name = part["load"]
+    t = prob.get("material", {}).get("thickness", 1.6e-3)
+    d = rivet_shank_diameter(prob, t) * 1e3  # mm
+    doc = ezdxf.readfile(os.path.join(out_dir, name, "flat.dxf"))
+    msp = doc.modelspace()
+    outline = [e for e in msp if e.dxf.layer == "CUT" and e.dxftype() == "POLYLINE"]
+    if len(outline) != 1:
+        return  # the outline check reports it
+    poly = Polygon([(v.dxf.location.x, v.dxf.location.y) for v in outline[0].vertices])
+    circles = {layer: [e for e in msp if e.dxftype() == "CIRCLE" and e.dxf.layer == layer]
+               for layer in ("RIVET_HOLES", "SELF_RIVET_HOLES")}
+    n_rivets, n_self = len(part.get("rivets", [])), len(part.get("self_rivets", []))
+    if len(circles["RIVET_HOLES"]) != n_rivets:
+        bad.append(f"{name}: {len(circles['RIVET_HOLES'])} circles on RIVET_HOLES for {n_rivets} rivets")
+    if len(circles["SELF_RIVET_HOLES"]) != 2 * n_self:
+        bad.append(f"{name}: {len(circles['SELF_RIVET_HOLES'])} circles on SELF_RIVET_HOLES for {n_self} self-rivets")
+    # Edge distance: from every cut edge, and from every bend zone (the band of
+    # width BA about the bend's centre line, where the sheet is curved): a
+    # rivet seats on flat sheet only.
+    e_req = (prob.get("manufacturing", {}).get("rivet_edge_distance", 0.0) or 0.0) * 1e3 or 2 * d  # mm
+    fp = part["flat_pattern"]
+    lo = np.min(np.array(fp["outline"][0], float), axis=0)
+    zones = []
+    for b in fp["bends"]:
+        A, B = 1e3 * (np.array(b["a"]) - lo), 1e3 * (np.array(b["b"]) - lo)
+        u = (B - A) / np.linalg.norm(B - A)
+        h = 0.5e3 * b["allowance"] * np.array([-u[1], u[0]])
+        zones.append((b["number"], Polygon([A - h, B - h, B + h, A + h])))
+    edge_margin, zone_margin = math.inf, math.inf
+    for layer, cs in circles.items():
+        for c in cs:
+            dia = 2 * c.dxf.radius
+            if not (d - 1e-6 <= dia <= d + 0.2):
+                bad.append(f"{name}: a hole on {layer} is {dia:.3f} mm across for a {d:.3f} mm rivet")
+            centre = Point(c.dxf.center.x, c.dxf.center.y)
+            where = f"the hole at ({centre.x:.3f}, {centre.y:.3f}) mm on {layer}"
+            to_edge = poly.exterior.distance(centre) if poly.contains(centre) else -math.inf
+            edge_margin = min(edge_margin, to_edge)
+            if to_edge < e_req - 0.01:
+                bad.append(f"{name}: {where} is {to_edge:.3f} mm from a cut edge (edge distance {e_req:.3f} mm)")
+            for number, zone in zones:
+                to_zone = zone.distance(centre)
+                zone_margin = min(zone_margin, to_zone)
+                if to_zone < e_req - 0.01:
+                    bad.append(f"{name}: {where} is {to_zone:.3f} mm from bend B{number}'s zone "
+                               f"(edge distance {e_req:.3f} mm)")
+    csv_path = os.path.join(out_dir, name, "rivets.csv")
+    if not os.path.exists(csv_path):
+        bad.append(f"{name}: {csv_path} is missing")
+        return
+    with open(csv_path) as f:
+        rows = list(csv_mod.DictReader(f))
+    drawn = [(c.dxf.center.x, c.dxf.center.y) for cs in circles.values() for c in cs]
+    by_tab = {}
+    for row in rows:
+        q = (float(row["x_mm"]), float(row["y_mm"]))
+        if not any(math.dist(q, p) < 1e-3 for p in drawn):
+            bad.append(f"{name}: rivets.csv {row['label']} at {q} mm has no hole in flat.dxf")
+        C, n = tab_plane(part["tabs"][int(row["tab"])]["corners"])
+        w = np.array([float(row[k]) for k in ("world_x_m", "world_y_m", "world_z_m")])
+        by_tab.setdefault(int(row["tab"]), []).append((np.array(q), w - (w - C[0]).dot(n) * n, row["label"]))
+    world = [tuple(r) for r in part.get("rivets", [])] + [tuple(p) for s in part.get("self_rivets", []) for p in s["points"]]
+    listed = [tuple(float(r[k]) for k in ("world_x_m", "world_y_m", "world_z_m")) for r in rows]
+    if len(listed) != len(world) or any(math.dist(a, b) > 1e-8 for a, b in zip(listed, world)):
+        bad.append(f"{name}: rivets.csv does not list result.json's rivets and self-rivet points in order")
+    worst = 0.0
+    for tab, holes in by_tab.items():
+        for i in range(len(holes)):
+            for j in range(i + 1, len(holes)):
+                worst = max(worst, abs(np.linalg.norm(holes[i][0] - holes[j][0]) - 1e3 * np.linalg.norm(holes[i][1] - holes[j][1])))
+    if worst > 1e-3:
+        bad.append(f"{name}: holes of one tab are {worst:.4f} mm off the distances of their rivets on the bent part")
+    apart = 0.0
+    for s_i in range(n_self):
+        label = f"S{s_i + 1}"
+        ends = [h for holes in by_tab.values() for h in holes if h[2] == label]
+        if len(ends) != 2:
+            bad.append(f"{name}: rivets.csv has {len(ends)} holes for {label}, want 2")
+            continue
+        apart = max(apart, 1e3 * float(np.linalg.norm(ends[0][1] - ends[1][1])))
+    if apart > 1.5 * t * 1e3 + 1e-6:
+        bad.append(f"{name}: the two holes of a self-rivet are {apart:.3f} mm apart when bent (limit 1.5 t)")
+    report.append(f"{name}: holes {n_rivets} rivet + {2 * n_self} self-rivet, d {d:.3f} mm; centres at least "
+                  f"{edge_margin:.3f} mm from a cut edge and {zone_margin:.3f} mm from a bend zone (edge distance "
+                  f"{e_req:.3f} mm); per-tab distances within {worst:.2e} mm; "
+                  f"self-rivet holes {apart:.3f} mm apart when bent")
 
 
 def part_faces(part, t):

@@ -13,6 +13,7 @@
 #include "sheetgen/core/cancelled.hpp"
 #include "sheetgen/core/geometry.hpp"
 #include "sheetgen/env/environment.hpp"
+#include "sheetgen/fem/rivet_layout.hpp"
 #include "sheetgen/part/exports.hpp"
 #include "sheetgen/part/validity.hpp"
 #include "sheetgen/report/convergence_plot.hpp"
@@ -326,6 +327,18 @@ GenerateResult generate(const Problem& input, const GenerateOptions& options, Ge
         mo.self_rivets = out.part.self_rivets;
         const PartModel pm = build_part_model(*answer_scene, li, plate_geometry(out.part.part, out.realised), mo);
         out.rivets = pm.rivets;
+        // The holes of the drawings: the FEM's rivets (polygon k is tab k) and the self-rivets' two sheets.
+        std::vector<PlacedRivet> flange;
+        for (size_t r = 0; r < pm.rivets.size(); ++r) flange.push_back({pm.rivet_polygon[r], pm.rivets[r]});
+        std::vector<PlacedSelfRivet> self;
+        for (const auto& tie : out.part.self_rivets)
+          self.push_back({{tie.polygon_a, tie.point_a}, {tie.polygon_b, tie.point_b}});
+        RivetLayoutOptions ro;
+        ro.thickness = answer_scene->material.thickness;
+        ro.diameter = answer_scene->manufacturing.rivet_diameter;
+        RivetHoleOptions ho;
+        ho.rivet_diameter = rivet_diameter(ro);
+        set_rivet_holes(out.plan, out.realised, flange, self, ho);
         new_parts.push_back(part_as_obstacle(out.load, out.realised, scene.material.thickness));
       }
     }
@@ -372,7 +385,7 @@ nlohmann::json result_json(const Problem& problem, const GenerateResult& result,
         self_rivets.push_back({{"tabs", {t.polygon_a, t.polygon_b}}, {"points", {v3(t.point_a), v3(t.point_b)}}});
       p["self_rivets"] = self_rivets;
       p["bend_sequence"] = o.plan.sequence.order;
-      p["flat_pattern"] = flat_pattern_json(o.plan.flat, o.plan.sequence.order);
+      p["flat_pattern"] = flat_pattern_json(o.plan.flat, o.plan.sequence.order, o.plan.holes);
     }
     json history = json::array();
     for (const auto& h : o.history)

@@ -18,6 +18,12 @@ std::string f6(double v) {
   return buf;
 }
 
+std::string f9(double v) {
+  char buf[64];
+  std::snprintf(buf, sizeof buf, "%.9f", v);
+  return buf;
+}
+
 std::string f3(double v) {
   char buf[64];
   std::snprintf(buf, sizeof buf, "%.3f", v);
@@ -80,7 +86,21 @@ std::vector<int> bend_numbers(const FlatPattern& flat, const std::vector<int>& o
   return num;
 }
 
-std::string flat_pattern_dxf(const FlatPattern& flat, const DrawingOptions& o) {
+namespace {
+
+// A self-rivet hole's note: which self-rivet and the bend after which it can be set.
+std::string self_rivet_note(const RivetHole& h) {
+  return hole_label(h) + (h.after_bend > 0 ? " AFTER B" + std::to_string(h.after_bend) : "");
+}
+
+// Where a hole's note goes (m, flat frame): beside the hole, clear of its rim.
+Vec2 note_place(const RivetHole& h, double text_height) {
+  return h.flat + Vec2(0.5 * h.diameter + 0.5 * text_height, 0.5 * h.diameter + 0.5 * text_height);
+}
+
+}  // namespace
+
+std::string flat_pattern_dxf(const FlatPattern& flat, const DrawingOptions& o, const std::vector<RivetHole>& holes) {
   const Vec2 org = drawing_origin(flat);
   auto X = [&](const Vec2& q) { return Vec2(1e3 * (q - org)); };  // mm
   const Vec2 size = 1e3 * drawing_size(flat);
@@ -127,7 +147,8 @@ std::string flat_pattern_dxf(const FlatPattern& flat, const DrawingOptions& o) {
   d.pair(0, "ENDTAB");
   struct Layer { const char* name; int color; const char* ltype; };
   const Layer layers[] = {{"0", 7, "CONTINUOUS"}, {"CUT", 7, "CONTINUOUS"}, {"BEND_UP", 1, "DASHED"},
-                          {"BEND_DOWN", 5, "DASHED"}, {"ANNOTATION", 3, "CONTINUOUS"}};
+                          {"BEND_DOWN", 5, "DASHED"}, {"RIVET_HOLES", 6, "CONTINUOUS"},
+                          {"SELF_RIVET_HOLES", 4, "CONTINUOUS"}, {"ANNOTATION", 3, "CONTINUOUS"}};
   d.pair(0, "TABLE");
   d.pair(2, "LAYER");
   d.pair(70, static_cast<int>(std::size(layers)));
@@ -201,12 +222,29 @@ std::string flat_pattern_dxf(const FlatPattern& flat, const DrawingOptions& o) {
     d.pair(72, 1);  // centred on the alignment point
     d.num(11, p.x()); d.num(21, p.y()); d.num(31, 0);
   }
+  for (const RivetHole& h : holes) {
+    const Vec2 c = X(h.flat);
+    d.pair(0, "CIRCLE");
+    d.pair(8, h.kind == RivetKind::Self ? "SELF_RIVET_HOLES" : "RIVET_HOLES");
+    d.num(10, c.x()); d.num(20, c.y()); d.num(30, 0);
+    d.num(40, 0.5e3 * h.diameter);
+  }
+  for (const RivetHole& h : holes) {
+    if (h.kind != RivetKind::Self) continue;
+    const Vec2 p = X(note_place(h, o.text_height));
+    d.pair(0, "TEXT");
+    d.pair(8, "ANNOTATION");
+    d.num(10, p.x()); d.num(20, p.y()); d.num(30, 0);
+    d.num(40, 1e3 * o.text_height);
+    d.pair(1, self_rivet_note(h));
+    d.pair(7, "STANDARD");
+  }
   d.pair(0, "ENDSEC");
   d.pair(0, "EOF");
   return d.str();
 }
 
-std::string flat_pattern_svg(const FlatPattern& flat, const DrawingOptions& o) {
+std::string flat_pattern_svg(const FlatPattern& flat, const DrawingOptions& o, const std::vector<RivetHole>& holes) {
   const Vec2 org = drawing_origin(flat);
   const Vec2 size = 1e3 * drawing_size(flat);
   const double margin = 5.0;  // mm
@@ -239,6 +277,16 @@ std::string flat_pattern_svg(const FlatPattern& flat, const DrawingOptions& o) {
     }
     s << "</g>\n";
   }
+  for (const RivetKind kind : {RivetKind::Flange, RivetKind::Self}) {
+    s << "<g id=\"" << (kind == RivetKind::Self ? "SELF_RIVET_HOLES" : "RIVET_HOLES") << "\" fill=\"none\" stroke=\""
+      << (kind == RivetKind::Self ? "darkcyan" : "magenta") << "\" stroke-width=\"0.2\">\n";
+    for (const RivetHole& h : holes) {
+      if (h.kind != kind) continue;
+      const Vec2 c = X(h.flat);
+      s << "<circle cx=\"" << f3(c.x()) << "\" cy=\"" << f3(c.y()) << "\" r=\"" << f3(0.5e3 * h.diameter) << "\"/>\n";
+    }
+    s << "</g>\n";
+  }
   s << "<g id=\"ANNOTATION\" fill=\"green\" font-family=\"sans-serif\" font-size=\"" << f3(1e3 * o.text_height)
     << "\" text-anchor=\"middle\" dominant-baseline=\"middle\">\n";
   for (const FlatBend& b : flat.bends) {
@@ -248,6 +296,12 @@ std::string flat_pattern_svg(const FlatPattern& flat, const DrawingOptions& o) {
     const Vec2 p = X(at);
     s << "<text x=\"" << f3(p.x()) << "\" y=\"" << f3(p.y()) << "\" transform=\"rotate(" << f3(-rot) << " " << f3(p.x())
       << " " << f3(p.y()) << ")\">" << label(b, number[b.tab]) << "&#176;</text>\n";
+  }
+  for (const RivetHole& h : holes) {
+    if (h.kind != RivetKind::Self) continue;
+    const Vec2 p = X(note_place(h, o.text_height));
+    s << "<text x=\"" << f3(p.x()) << "\" y=\"" << f3(p.y()) << "\" text-anchor=\"start\">" << self_rivet_note(h)
+      << "</text>\n";
   }
   s << "</g>\n</svg>\n";
   return s.str();
@@ -267,6 +321,21 @@ std::string bend_table_csv(const FlatPattern& flat, const std::vector<int>& orde
     const FlatBend& b = *bend_of[t];
     s << ++k << "," << f6(deg(std::abs(b.angle))) << "," << (b.direction == BendDirection::Up ? "UP" : "DOWN") << ","
       << f6(1e3 * b.inside_radius) << "," << f6(1e3 * b.length) << "," << t << "\n";
+  }
+  return s.str();
+}
+
+std::string rivet_table_csv(const FlatPattern& flat, const std::vector<RivetHole>& holes) {
+  const Vec2 org = drawing_origin(flat);
+  std::ostringstream s;
+  s << "label,kind,tab,other_tab,x_mm,y_mm,diameter_mm,after_bend,world_x_m,world_y_m,world_z_m\n";
+  for (const RivetHole& h : holes) {
+    const Vec2 q = 1e3 * (h.flat - org);
+    const bool self = h.kind == RivetKind::Self;
+    s << hole_label(h) << "," << (self ? "self" : "flange") << "," << h.tab << ","
+      << (self ? std::to_string(h.other_tab) : "") << "," << f6(q.x()) << "," << f6(q.y()) << "," << f6(1e3 * h.diameter)
+      << "," << (self ? std::to_string(h.after_bend) : "") << "," << f9(h.world.x()) << "," << f9(h.world.y()) << ","
+      << f9(h.world.z()) << "\n";
   }
   return s.str();
 }
@@ -316,7 +385,8 @@ nlohmann::json part_json(const Part& part, const RealisedPart& rp) {
   return tabs;
 }
 
-nlohmann::json flat_pattern_json(const FlatPattern& flat, const std::vector<int>& order) {
+nlohmann::json flat_pattern_json(const FlatPattern& flat, const std::vector<int>& order,
+                                 const std::vector<RivetHole>& holes) {
   auto v2 = [](const Vec2& p) { return nlohmann::json::array({p.x(), p.y()}); };
   const std::vector<int> number = bend_numbers(flat, order);
   nlohmann::json j;
@@ -345,6 +415,18 @@ nlohmann::json flat_pattern_json(const FlatPattern& flat, const std::vector<int>
     reliefs.push_back({{"parent", r.parent}, {"tab", r.tab}, {"polygon", poly}, {"width", r.width}, {"depth", r.depth}});
   }
   j["reliefs"] = reliefs;
+  nlohmann::json hole_list = nlohmann::json::array();
+  for (const RivetHole& h : holes) {
+    const bool self = h.kind == RivetKind::Self;
+    hole_list.push_back({{"label", hole_label(h)},
+                         {"kind", self ? "self" : "flange"},
+                         {"tab", h.tab},
+                         {"other_tab", h.other_tab},
+                         {"centre", v2(h.flat)},
+                         {"diameter", h.diameter},
+                         {"after_bend", h.after_bend}});
+  }
+  j["holes"] = hole_list;
   j["area_m2"] = flat.area();
   j["frame"] = {{"origin", {flat.frame.origin.x(), flat.frame.origin.y(), flat.frame.origin.z()}},
                 {"x_axis", {flat.frame.x_axis.x(), flat.frame.x_axis.y(), flat.frame.x_axis.z()}},

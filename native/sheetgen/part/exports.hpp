@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "sheetgen/part/flat_pattern.hpp"
+#include "sheetgen/part/rivet_holes.hpp"
 
 namespace sheetgen {
 
@@ -24,10 +25,19 @@ std::vector<int> bend_numbers(const FlatPattern& flat, const std::vector<int>& b
 
 // DXF R12 ($ACADVER AC1009), $INSUNITS 4 (mm). Layers: CUT (outline, a closed
 // POLYLINE with the relief notches in it), BEND_UP / BEND_DOWN (bend centre
-// lines, LINE with linetype DASHED), ANNOTATION (TEXT "B<n> UP|DOWN <angle>%%d").
-std::string flat_pattern_dxf(const FlatPattern& flat, const DrawingOptions& options = {});
+// lines, LINE with linetype DASHED), RIVET_HOLES / SELF_RIVET_HOLES (CIRCLE of
+// the hole diameter per hole of `holes`), ANNOTATION (TEXT "B<n> UP|DOWN
+// <angle>%%d" per bend, "S<n> AFTER B<k>" beside each self-rivet hole).
+std::string flat_pattern_dxf(const FlatPattern& flat, const DrawingOptions& options = {},
+                             const std::vector<RivetHole>& holes = {});
 // SVG in millimetres (y up, flipped into SVG's y down), same layers as <g id=...>.
-std::string flat_pattern_svg(const FlatPattern& flat, const DrawingOptions& options = {});
+std::string flat_pattern_svg(const FlatPattern& flat, const DrawingOptions& options = {},
+                             const std::vector<RivetHole>& holes = {});
+// Header "label,kind,tab,other_tab,x_mm,y_mm,diameter_mm,after_bend,world_x_m,world_y_m,world_z_m";
+// one row per hole: x_mm, y_mm in the drawings' coordinates (the outline's
+// lower-left corner at 0, 0); kind "flange" or "self"; other_tab and
+// after_bend empty for flange rivets (set when the part is installed).
+std::string rivet_table_csv(const FlatPattern& flat, const std::vector<RivetHole>& holes);
 // Header "order,angle_deg,direction,inside_radius_mm,length_mm,tab"; one row per
 // bend in bending order; angle_deg is |theta3|, direction UP or DOWN.
 std::string bend_table_csv(const FlatPattern& flat, const std::vector<int>& bend_order = {});
@@ -38,8 +48,10 @@ std::string part_obj(const RealisedPart& realised);
 // parameters{d,w,l,theta1,theta2,theta3} (m, rad), corners [[x,y,z],...] (m),
 // normal}], the base with parent -1 and its outline corners.
 nlohmann::json part_json(const Part& part, const RealisedPart& realised);
-// flat_pattern for sheetgen-result/1: {outline [[x,y],...] (m), bends[...], reliefs[...], area_m2}.
-nlohmann::json flat_pattern_json(const FlatPattern& flat, const std::vector<int>& bend_order = {});
+// flat_pattern for sheetgen-result/1: {outline [[x,y],...] (m), bends[...], reliefs[...],
+// holes[{label, kind, tab, other_tab, centre [x,y] (m), diameter (m), after_bend}], area_m2}.
+nlohmann::json flat_pattern_json(const FlatPattern& flat, const std::vector<int>& bend_order = {},
+                                 const std::vector<RivetHole>& holes = {});
 
 // Writes text to a file; throws std::runtime_error naming the path on failure.
 void write_text_file(const std::string& path, const std::string& text);

@@ -22,6 +22,13 @@ ManufacturingPlan plan_manufacturing(const Part& part, const SheetSpec& spec, co
   return plan;
 }
 
+void set_rivet_holes(ManufacturingPlan& plan, const RealisedPart& realised, const std::vector<PlacedRivet>& flange_rivets,
+                     const std::vector<PlacedSelfRivet>& self_rivets, const RivetHoleOptions& options) {
+  // Numbered as the drawings number the bends (write_manufacturing_files).
+  const std::vector<int> order = plan.sequence.ok() ? plan.sequence.order : std::vector<int>{};
+  plan.holes = rivet_holes(plan.flat, realised, flange_rivets, self_rivets, order, options);
+}
+
 void write_manufacturing_files(const std::string& dir, const RealisedPart& realised, const ManufacturingPlan& plan,
                                const DrawingOptions& drawing) {
   std::error_code ec;
@@ -30,9 +37,10 @@ void write_manufacturing_files(const std::string& dir, const RealisedPart& reali
   DrawingOptions d = drawing;
   if (d.bend_order.empty() && plan.sequence.ok()) d.bend_order = plan.sequence.order;
   const std::filesystem::path p(dir);
-  write_text_file((p / "flat.dxf").string(), flat_pattern_dxf(plan.flat, d));
-  write_text_file((p / "flat.svg").string(), flat_pattern_svg(plan.flat, d));
+  write_text_file((p / "flat.dxf").string(), flat_pattern_dxf(plan.flat, d, plan.holes));
+  write_text_file((p / "flat.svg").string(), flat_pattern_svg(plan.flat, d, plan.holes));
   write_text_file((p / "bends.csv").string(), bend_table_csv(plan.flat, d.bend_order));
+  write_text_file((p / "rivets.csv").string(), rivet_table_csv(plan.flat, plan.holes));
   write_text_file((p / "part.obj").string(), part_obj(realised));
 }
 

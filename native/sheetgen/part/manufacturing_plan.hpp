@@ -23,14 +23,22 @@ struct ManufacturingPlan {
   FlatPattern flat;
   ValidityReport flat_report;  // unfold status + outline overlap
   BendSequenceResult sequence; // order (tab indices) when ok
+  // Rivet and self-rivet holes; the rivets come from the FEM's layout, so the
+  // caller fills them (set_rivet_holes) once the part is analysed. Empty: the drawings show none.
+  std::vector<RivetHole> holes;
   bool ok() const { return status == ValidityReason::Ok; }
 };
 
 ManufacturingPlan plan_manufacturing(const Part& part, const SheetSpec& spec, const ManufacturingPlanOptions& options = {});
 
-// Writes DIR/flat.dxf, DIR/flat.svg, DIR/bends.csv (bending order when the plan
-// has one, tab order otherwise) and DIR/part.obj; creates DIR. Throws
-// std::runtime_error naming the file on failure.
+// Fills plan.holes: the rivets mapped into the flat pattern, self-rivets
+// numbered against the plan's bending order.
+void set_rivet_holes(ManufacturingPlan& plan, const RealisedPart& realised, const std::vector<PlacedRivet>& flange_rivets,
+                     const std::vector<PlacedSelfRivet>& self_rivets, const RivetHoleOptions& options);
+
+// Writes DIR/flat.dxf, DIR/flat.svg (both with the plan's holes), DIR/bends.csv
+// (bending order when the plan has one, tab order otherwise), DIR/rivets.csv
+// and DIR/part.obj; creates DIR. Throws std::runtime_error naming the file on failure.
 void write_manufacturing_files(const std::string& dir, const RealisedPart& realised, const ManufacturingPlan& plan,
                                const DrawingOptions& drawing = {});
 

@@ -11,6 +11,7 @@
 
 #include "sheetgen/part/bend_sequence.hpp"
 #include "sheetgen/part/exports.hpp"
+#include "../common/sample_part.hpp"
 #include "../common/sheet_fixture.hpp"
 
 namespace sheetgen {
@@ -20,16 +21,7 @@ const double kDeg = M_PI / 180.0;
 
 SheetSpec spec() { return fixtures::aluminium_sheet_1_6mm(); }
 
-// Base 60 x 60 mm; A up 90 on edge 0 with D down 90 on A's far edge; B down 45
-// on edge 2; C up 120 on edge 1. Four bends: UP 90, DOWN 90, DOWN 45, UP 120.
-Part sample() {
-  Part p = make_base_part({Vec3(0, 0, 0), Vec3(0.06, 0, 0), Vec3(0.06, 0.06, 0), Vec3(0, 0.06, 0)}, Vec3::UnitZ());
-  const int a = p.add_tab(0, 0, {0.01, 0.02, 0.03, 0, 0, 90 * kDeg});
-  p.add_tab(a, kFarEdge, {0.002, 0.016, 0.02, 0, 0, -90 * kDeg});
-  p.add_tab(0, 2, {0.02, 0.02, 0.025, 0, 0, -45 * kDeg});
-  p.add_tab(0, 1, {0.02, 0.02, 0.02, 0, 0, 120 * kDeg});
-  return p;
-}
+Part sample() { return fixtures::four_bend_sample(); }
 
 // DXF as (code, value) pairs.
 std::vector<std::pair<int, std::string>> pairs(const std::string& dxf) {
@@ -140,9 +132,16 @@ TEST(Exports, WritesSampleDxfForPython) {
   ASSERT_TRUE(seq.ok()) << seq.message;
   DrawingOptions d;
   d.bend_order = seq.order;
-  write_text_file(dxf_path.string(), flat_pattern_dxf(flat, d));
+  // Holes: a rivet at the middle of B (tab 3) and a self-rivet joining A (1) and C (4).
+  auto middle = [&](int tab) {
+    Vec3 c = Vec3::Zero();
+    for (const Vec3& p : rp.tabs[tab].corners) c += p / static_cast<double>(rp.tabs[tab].corners.size());
+    return c;
+  };
+  const auto holes = rivet_holes(flat, rp, {{3, middle(3)}}, {{{1, middle(1)}, {4, middle(4)}}}, seq.order);
+  write_text_file(dxf_path.string(), flat_pattern_dxf(flat, d, holes));
   const auto dir = dxf_path.parent_path();
-  write_text_file((dir / "flat.svg").string(), flat_pattern_svg(flat, d));
+  write_text_file((dir / "flat.svg").string(), flat_pattern_svg(flat, d, holes));
   write_text_file((dir / "bends.csv").string(), bend_table_csv(flat, seq.order));
   write_text_file((dir / "part.obj").string(), part_obj(rp));
   // What the Python test checks the DXF against.
@@ -155,6 +154,17 @@ TEST(Exports, WritesSampleDxfForPython) {
                                  {"angle_deg", std::abs(b.angle) * 180.0 / M_PI},
                                  {"direction", b.direction == BendDirection::Up ? "UP" : "DOWN"},
                                  {"length_mm", b.length * 1e3}});
+  Vec2 org = Vec2::Constant(1e9);
+  for (const Vec2& q : flat.outline) org = org.cwiseMin(q);
+  for (const RivetHole& h : holes) {
+    const Vec2 q = 1e3 * (h.flat - org);
+    const bool self = h.kind == RivetKind::Self;
+    expected["holes"].push_back({{"layer", self ? "SELF_RIVET_HOLES" : "RIVET_HOLES"},
+                                 {"x_mm", q.x()},
+                                 {"y_mm", q.y()},
+                                 {"diameter_mm", 1e3 * h.diameter}});
+    if (self) expected["notes"].push_back(hole_label(h) + " AFTER B" + std::to_string(h.after_bend));
+  }
   write_text_file((dir / "expected.json").string(), expected.dump(2));
   write_text_file((dir / "part.json").string(), part_json(part, rp).dump(2));
   EXPECT_TRUE(std::filesystem::exists(dxf_path));
