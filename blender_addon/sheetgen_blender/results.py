@@ -2,7 +2,9 @@
 
 Per load with a valid part: ``<load> part`` (the bent tabs, Solidify to the
 sheet thickness, bend edges marked), ``<load> flat`` (the flat pattern laid
-beside the scene, bend lines as edges) and ``<load> rivets`` (markers). The
+beside the scene, bend lines as edges), ``<load> flat holes`` (its rivet and
+self-rivet holes, discs on the flat's top face), ``<load> rivets`` and
+``<load> self-rivets`` (markers; the latter only on a self-riveted part). The
 plain mesh data comes from core.result. Every generated object is marked
 *Not in environment*, so a later Generate does not see it. The run's
 result.json text and its export files are stored on the collection (saved
@@ -48,6 +50,10 @@ def part_material():
 
 def rivet_material():
     return _material("sheetgen rivet", (0.85, 0.12, 0.08), roughness=0.4)
+
+
+def self_rivet_material():
+    return _material("sheetgen self-rivet", (0.05, 0.65, 0.75), roughness=0.4)
 
 
 def flat_material():
@@ -126,7 +132,7 @@ def build_run(context, doc, files, thickness):
     scene.collection.children.link(col)
     col[KEY_RESULT] = json.dumps(doc)
     col[KEY_FILES] = dict(files)
-    metal, red, flat_mat = part_material(), rivet_material(), flat_material()
+    metal, red, cyan, flat_mat = part_material(), rivet_material(), self_rivet_material(), flat_material()
     x0 = (bounds[1].x if bounds else 0.0) + FLAT_GAP
     y0 = bounds[0].y if bounds else 0.0
     z0 = bounds[0].z if bounds else 0.0
@@ -137,6 +143,9 @@ def build_run(context, doc, files, thickness):
         _solidify(bent, thickness)
         if pm.rivets.vertices:
             _object("%s rivets" % pm.load, mesh_from_plain("%s rivets" % pm.load, pm.rivets), col, red, run, pm.load)
+        if pm.self_rivets.vertices:
+            _object("%s self-rivets" % pm.load, mesh_from_plain("%s self-rivets" % pm.load, pm.self_rivets), col, cyan,
+                    run, pm.load)
         flat = _object("%s flat" % pm.load, mesh_from_plain("%s flat" % pm.load, pm.flat), col, flat_mat, run,
                        pm.load)
         _solidify(flat, thickness)
@@ -144,6 +153,11 @@ def build_run(context, doc, files, thickness):
         ys = [v[1] for v in pm.flat.vertices]
         # Beside the scene on its floor level, flat patterns of several loads one after another along y.
         flat.location = (x0 - min(xs), y0 - min(ys), z0 + thickness / 2)
+        if pm.holes.vertices:
+            # On the flat's top face, a hair above it so the discs do not z-fight with it.
+            holes = _object("%s flat holes" % pm.load, mesh_from_plain("%s flat holes" % pm.load, pm.holes), col, red,
+                            run, pm.load)
+            holes.location = (flat.location[0], flat.location[1], flat.location[2] + thickness / 2 + 1e-4)
         y0 += (max(ys) - min(ys)) + FLAT_GAP
     scene.sheetgen.result_collection = col
     return col

@@ -125,6 +125,35 @@ class Document(unittest.TestCase):
         r = max(1.5 * T, 0.002)
         self.assertEqual(pms[0].rivets.vertices[0], (0.05 + r, 0.05, 0.2))
 
+    def test_self_rivets_and_holes(self):
+        part = bracket()
+        # One self-rivet whose two sheet points are 1.6 mm apart; its holes and a flange rivet's in the flat.
+        part["self_rivets"] = [{"tabs": [0, 1], "points": [[0.09, 0.05, 0.2], [0.09, 0.05, 0.2016]]}]
+        part["flat_pattern"]["holes"] = [
+            {"label": "R1", "kind": "flange", "centre": [0.14, 0.05], "diameter": 0.004},
+            {"label": "S1", "kind": "self", "centre": [0.09, 0.05], "diameter": 0.004}]
+        pm = R.part_meshes(doc(part), T)[0]
+        self.assertEqual(len(pm.self_rivets.vertices), 6)
+        r = max(1.5 * T, 0.002)
+        self.assertAlmostEqual(pm.self_rivets.vertices[4][2], 0.2008 + r)   # the octahedron's top, about the midpoint
+        self.assertEqual(len(pm.holes.faces), 2)
+        self.assertEqual(len(pm.holes.faces[0]), R.HOLE_SEGMENTS)
+        # A regular 16-gon of radius 2 mm: (n/2) r^2 sin(2 pi / n).
+        n = R.HOLE_SEGMENTS
+        self.assertAlmostEqual(pm.holes.face_area(1), 0.5 * n * 0.002 ** 2 * math.sin(2 * math.pi / n), places=15)
+        self.assertEqual(pm.holes.vertices[0], (0.14 + 0.002, 0.05, 0.0))
+        rows = dict(R.report_rows(part))
+        self.assertEqual((rows["Rivets"], rows["Self-rivets"]), ("2", "1"))
+
+    def test_bad_hole_is_one_sentence(self):
+        part = bracket()
+        part["flat_pattern"]["holes"] = [{"centre": [0.1, 0.05], "diameter": 0.0}]
+        with self.assertRaisesRegex(R.ResultError, r"^parts\['box'\]\.flat_pattern\.holes\[0\]\.diameter: must be > 0$"):
+            R.part_meshes(doc(part), T)
+        part["flat_pattern"]["holes"] = [{"centre": [0.1], "diameter": 0.004}]
+        with self.assertRaisesRegex(R.ResultError, r"holes\[0\]: needs centre \[x, y\] and diameter"):
+            R.part_meshes(doc(part), T)
+
     def test_wrong_format(self):
         with self.assertRaisesRegex(R.ResultError, "sheetgen-result/1"):
             R.part_meshes({"format": "sheetgen-problem/1", "parts": []}, T)

@@ -11,7 +11,10 @@ What the Blender layer builds per load (docs/pipeline.md "result.json"):
   split along its bend lines, so a bend is a real edge between two faces (a
   bend line that does not cross its polygon stays a loose edge). The reliefs
   are notches of the outline already;
-- **rivet markers**: a small octahedron around every rivet centre;
+- **rivet markers**: a small octahedron around every rivet centre, and one
+  around every self-rivet (between its two sheets' points);
+- **hole discs**: the flat pattern's rivet and self-rivet holes
+  (``flat_pattern.holes``) as filled circles in the flat frame (z = 0);
 - the **report**: area, mass, bends, compliance and its limit, deflection,
   MS, run time, in the panel's units.
 """
@@ -60,6 +63,8 @@ class PartMeshes:
     bent: Optional[MeshPlain] = None
     flat: Optional[MeshPlain] = None
     rivets: Optional[MeshPlain] = None
+    self_rivets: Optional[MeshPlain] = None
+    holes: Optional[MeshPlain] = None
     thickness: float = 0.0
 
 
@@ -247,6 +252,40 @@ def rivet_markers(points, radius):
     return m
 
 
+def self_rivet_centres(part):
+    """Per self-rivet the midpoint of its two sheets' points (m): where the rivet is."""
+    out = []
+    for k, s in enumerate(part.get("self_rivets") or []):
+        pts = s.get("points") if isinstance(s, dict) else None
+        if not isinstance(pts, list) or len(pts) != 2:
+            raise ResultError("parts['%s'].self_rivets[%d].points: needs one point on each sheet"
+                              % (part.get("load"), k))
+        out.append(tuple(0.5 * (float(a) + float(b)) for a, b in zip(pts[0], pts[1])))
+    return out
+
+
+HOLE_SEGMENTS = 16
+
+
+def hole_discs(part, segments=HOLE_SEGMENTS):
+    """Every hole of ``flat_pattern.holes`` as an n-gon of its diameter in the flat frame (z = 0)."""
+    m = MeshPlain()
+    for k, h in enumerate((part.get("flat_pattern") or {}).get("holes") or []):
+        try:
+            cx, cy = (float(v) for v in h["centre"])
+            r = 0.5 * float(h["diameter"])
+        except (KeyError, TypeError, ValueError):
+            raise ResultError("parts['%s'].flat_pattern.holes[%d]: needs centre [x, y] and diameter (m)"
+                              % (part.get("load"), k))
+        if not r > 0:
+            raise ResultError("parts['%s'].flat_pattern.holes[%d].diameter: must be > 0" % (part.get("load"), k))
+        o = len(m.vertices)
+        m.vertices += [(cx + r * math.cos(2 * math.pi * i / segments), cy + r * math.sin(2 * math.pi * i / segments), 0.0)
+                       for i in range(segments)]
+        m.faces.append(list(range(o, o + segments)))
+    return m
+
+
 # ---------------------------------------------------------------------------
 # the whole document
 
@@ -270,6 +309,8 @@ def part_meshes(doc, thickness, rivet_radius=None):
             pm.bent = bent_mesh(part)
             pm.flat = flat_mesh(part, snap=max(SNAP_THICKNESSES * thickness, ON_EDGE_TOL))
             pm.rivets = rivet_markers(part.get("rivets", []), r)
+            pm.self_rivets = rivet_markers(self_rivet_centres(part), r)
+            pm.holes = hole_discs(part)
         out.append(pm)
     return out
 
@@ -297,6 +338,7 @@ def report(part):
         values[key] = None if v is None else (v * factor if key != "bends" else int(v))
     values["time_s"] = (part.get("timing") or {}).get("total_s")
     values["rivets"] = len(part.get("rivets") or [])
+    values["self_rivets"] = len(part.get("self_rivets") or [])
     return values
 
 
@@ -307,6 +349,8 @@ def report_rows(part):
     for key, label, _factor, fmt in REPORT_FIELDS:
         v = values[key]
         rows.append((label, "—" if v is None else fmt % v))
+    rows.append(("Rivets", "%d" % values["rivets"]))
+    rows.append(("Self-rivets", "%d" % values["self_rivets"]))
     t = values["time_s"]
     rows.append(("Run time (s)", "—" if t is None else "%.1f" % t))
     return rows
