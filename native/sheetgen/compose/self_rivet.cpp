@@ -140,6 +140,14 @@ std::vector<SelfRivetPlan> gusset_plans(const Part& part, const RealisedPart& rp
         const Vec3 side = l * (s.v + std::tan(s.theta2) * s.dir);
         return ccw({to2(p0), to2(p1), to2(p1 + side), to2(p0 + side)});
       };
+      // Its flat sheet, where a rivet may go: beyond the bend zone at its root
+      // (the setback SB, measured square to the root as l is).
+      auto flat_rect = [&](const Side& s, double l) {
+        const double f = std::min(1.0, bend_setback(s.theta3, SheetSpec::from(problem)) / l);
+        const Vec3 p0 = s.e->a + s.d * s.dir, p1 = p0 + s.w * s.dir;
+        const Vec3 side = l * (s.v + std::tan(s.theta2) * s.dir);
+        return ccw({to2(p0 + f * side), to2(p1 + f * side), to2(p1 + side), to2(p0 + side)});
+      };
       // Each gusset lies in the common plane, which holds the other edge: the
       // other tab leaves the plane along that edge, so the gusset must keep the
       // sheets' clearance from it. Where two edges meet at an acute corner a
@@ -170,7 +178,9 @@ std::vector<SelfRivetPlan> gusset_plans(const Part& part, const RealisedPart& rp
       const std::vector<Vec2> ra = rect(*sa, la), rb = rect(*sb, lb);
       const std::vector<Vec2> overlap = clip_convex(ra, rb);
       if (overlap.size() < 3) continue;
-      const std::vector<Vec2> room = inset_convex(ccw(overlap), edge_distance);
+      const std::vector<Vec2> flat_overlap = clip_convex(flat_rect(*sa, la), flat_rect(*sb, lb));
+      if (flat_overlap.size() < 3) continue;
+      const std::vector<Vec2> room = inset_convex(ccw(flat_overlap), edge_distance);
       if (room.size() < 3) continue;
       // Rivets: the centre of the room, plus more along its longest extent at the pitch.
       const Vec2 c = polygon_centroid(room);
@@ -184,7 +194,7 @@ std::vector<SelfRivetPlan> gusset_plans(const Part& part, const RealisedPart& rp
         for (int sgn : {-1, 1}) {
           Vec2 q = c;
           q[axis] += sgn * k * mf.rivet_pitch;
-          rivets2.push_back(q);
+          if (point_in_convex(q, room)) rivets2.push_back(q);  // a slanted room's box reaches past it
         }
 
       SelfRivetPlan plan;

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <string>
 
 #include "sheetgen/fem/fem_error.hpp"
 
@@ -26,7 +27,8 @@ std::vector<Vec3> rivet_footprint(const Vec3& centre, const Vec3& normal, double
   return fp;
 }
 
-RivetLayout layout_rivets(const std::vector<Vec3>& polygon, int far_edge, const RivetLayoutOptions& options) {
+RivetLayout layout_rivets(const std::vector<Vec3>& polygon, int far_edge, const RivetLayoutOptions& options,
+                          const std::vector<double>& edge_setback) {
   const int n = static_cast<int>(polygon.size());
   if (n < 3) throw FemError("rivet flange", "polygon has fewer than 3 vertices");
   if (far_edge < 0 || far_edge >= n) throw FemError("rivet flange", "far edge index out of range");
@@ -35,6 +37,11 @@ RivetLayout layout_rivets(const std::vector<Vec3>& polygon, int far_edge, const 
   out.edge_distance = options.edge_distance > 0 ? options.edge_distance : 2.0 * out.diameter;
   out.pitch = options.pitch > 0 ? options.pitch : 6.0 * out.diameter;
   const double e = out.edge_distance;
+  if (!edge_setback.empty() && static_cast<int>(edge_setback.size()) != n)
+    throw FemError("rivet flange", "has " + std::to_string(n) + " edges but " + std::to_string(edge_setback.size()) +
+                                       " edge setbacks");
+  // Distance a rivet keeps from edge j: the edge distance, beyond the bend zone when the edge is a bend.
+  auto keep = [&](int j) { return e + (edge_setback.empty() ? 0.0 : std::max(0.0, edge_setback[j])); };
 
   Vec3 normal = Vec3::Zero();  // Newell: the right-hand normal of the vertex order
   for (int i = 0; i < n; ++i) normal += polygon[i].cross(polygon[(i + 1) % n]);
@@ -45,15 +52,15 @@ RivetLayout layout_rivets(const std::vector<Vec3>& polygon, int far_edge, const 
   const Vec3 d = (b - a).normalized();
   // In-plane inward normal of edge (p, q) of a polygon ordered counter-clockwise about `normal`.
   auto inward = [&](const Vec3& p, const Vec3& q) { return normal.cross((q - p).normalized()); };
-  const Vec3 origin = a + e * inward(a, b);
-  // Keep e from every other edge: n_j . (origin + s d - p_j) >= e, an interval in s.
+  const Vec3 origin = a + keep(far_edge) * inward(a, b);
+  // Keep keep(j) from every other edge: n_j . (origin + s d - p_j) >= keep(j), an interval in s.
   double lo = -std::numeric_limits<double>::infinity(), hi = std::numeric_limits<double>::infinity();
   for (int j = 0; j < n; ++j) {
     if (j == far_edge) continue;
     const Vec3 p = polygon[j], q = polygon[(j + 1) % n];
     if (!((q - p).norm() > 0)) continue;
     const Vec3 m = inward(p, q);
-    const double g0 = m.dot(origin - p) - e, slope = m.dot(d);
+    const double g0 = m.dot(origin - p) - keep(j), slope = m.dot(d);
     if (std::abs(slope) < 1e-12) {
       if (g0 < -1e-12) throw FemError("rivet flange", "too narrow for a rivet row at the edge distance");
       continue;

@@ -18,6 +18,14 @@ PlateGeometry plate_geometry(const Part& part, const RealisedPart& realised) {
     g.polygons.push_back(realised.tabs[i].corners);
     g.rivet_area.push_back(part.tabs[i].rivet_area);
     g.rivet_edge.push_back(i == 0 ? 0 : kFarEdge);
+    g.edge_bend_angle.emplace_back(realised.tabs[i].corners.size(), 0.0);
+  }
+  for (int i = 1; i < part.size(); ++i) {
+    const double a = std::abs(part.tabs[i].params.theta3);
+    const int parent = part.tabs[i].parent, edge = part.tabs[i].parent_edge;
+    g.edge_bend_angle[i][0] = std::max(g.edge_bend_angle[i][0], a);  // edge 0: the root P1 -> P0
+    if (edge >= 0 && edge < static_cast<int>(g.edge_bend_angle[parent].size()))
+      g.edge_bend_angle[parent][edge] = std::max(g.edge_bend_angle[parent][edge], a);
   }
   return g;
 }
@@ -34,6 +42,7 @@ PartModel build_part_model(const Problem& problem, int load_index, const PlateGe
   PartModel pm;
   // Rivets on every flange, as fixed points so each becomes a node (with its footprint ring).
   std::vector<std::vector<Vec3>> fixed(geometry.polygons.size());
+  const SheetSpec sheet = SheetSpec::from(problem);
   RivetLayoutOptions ro;
   ro.thickness = t;
   ro.diameter = mf.rivet_diameter;
@@ -44,7 +53,10 @@ PartModel build_part_model(const Problem& problem, int load_index, const PlateGe
   for (size_t k = 0; k < geometry.polygons.size(); ++k) {
     if (geometry.rivet_area[k] < 0) continue;
     any_flange = true;
-    layouts[k] = layout_rivets(geometry.polygons[k], geometry.rivet_edge[k], ro);
+    std::vector<double> setback;
+    if (k < geometry.edge_bend_angle.size())
+      for (double a : geometry.edge_bend_angle[k]) setback.push_back(a > 0 ? bend_setback(a, sheet) : 0.0);
+    layouts[k] = layout_rivets(geometry.polygons[k], geometry.rivet_edge[k], ro, setback);
     fixed[k] = layouts[k].all_points();
   }
   if (!any_flange)
@@ -201,6 +213,19 @@ PlateGeometry plate_geometry_from_json(const std::string& text, const std::strin
     const long long ra = tab.has("rivet_area") ? tab.at("rivet_area").as_integer() : -1;
     g.rivet_area.push_back(static_cast<int>(ra));
     g.rivet_edge.push_back(i == 0 ? 0 : kFarEdge);
+    g.edge_bend_angle.emplace_back(poly.size(), 0.0);
+  }
+  // Bends from the tree, as plate_geometry() has them, when the tabs carry it.
+  for (size_t i = 1; i < tabs.size(); ++i) {
+    const JsonNode tab = tabs.at(i);
+    if (!tab.has("parent") || !tab.has("parameters") || tab.at("parameters").raw().is_null()) continue;
+    const long long parent = tab.at("parent").as_integer();
+    if (parent < 0 || parent >= static_cast<long long>(i)) tab.at("parent").fail("must be the index of an earlier tab");
+    const double a = std::abs(tab.at("parameters").number_or("theta3", 0.0));
+    g.edge_bend_angle[i][0] = std::max(g.edge_bend_angle[i][0], a);
+    const long long edge = tab.integer_or("parent_edge", -1);
+    if (edge >= 0 && edge < static_cast<long long>(g.edge_bend_angle[parent].size()))
+      g.edge_bend_angle[parent][edge] = std::max(g.edge_bend_angle[parent][edge], a);
   }
   return g;
 }

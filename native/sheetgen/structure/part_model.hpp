@@ -22,6 +22,10 @@ struct PlateGeometry {
   std::vector<std::vector<Vec3>> polygons;
   std::vector<int> rivet_area;  // per polygon
   std::vector<int> rivet_edge;  // per polygon: edge i (vertex i -> i+1) rivets run along
+  // Per polygon, per edge: |angle| (rad) of the bend on that edge, 0 for a cut
+  // edge (a tab's root, and its parent's edge it leaves from). Rivets keep
+  // their edge distance beyond the bend zone. Empty: no bends known.
+  std::vector<std::vector<double>> edge_bend_angle;
 };
 
 // A self-rivet: two points (one on each sheet, m) that are tied rigidly.
@@ -45,6 +49,7 @@ struct PartModel {
 };
 
 // Tabs of a realised part as plate geometry; a rivet flange's rivets run along its far edge.
+// edge_bend_angle from the tab tree (flat extensions are no bends).
 PlateGeometry plate_geometry(const Part& part, const RealisedPart& realised);
 
 // Throws FemError (a sentence naming the cause) when the model cannot be built:
@@ -80,7 +85,8 @@ ShellSolveOptions part_solve_options(const Problem& problem, const ShellElementO
 StructuralResult analyse_part(const Problem& problem, int load_index, const PlateGeometry& geometry,
                               const PartModelOptions& options = {}, ShellSolver* solver = nullptr);
 
-// The tabs[] of a sheetgen-result/1 part (corners, rivet_area) as plate geometry.
+// The tabs[] of a sheetgen-result/1 part (corners, rivet_area; parent,
+// parent_edge and parameters.theta3 for the bends when present) as plate geometry.
 // Throws InputError naming `source` and the field when the JSON is malformed.
 PlateGeometry plate_geometry_from_json(const std::string& json_tabs_text, const std::string& source);
 

@@ -321,5 +321,23 @@ TEST(RivetLayout, DefaultsForSixteenHundredthsSheet) {
   EXPECT_THROW(layout_rivets(thin, 2), FemError);
 }
 
+TEST(RivetLayout, BendZonesKeepTheRowOnFlatSheet) {
+  // The flange of DefaultsForSixteenHundredthsSheet with a gusset bent off its
+  // side edge 1 (x = 60 mm) whose zone reaches s = 6.5 mm into it: the row
+  // keeps e beyond it, so it spans x in [e, 60 - e - s] = [7.9375, 45.5625] mm
+  // (37.625 mm: still 2 rivets at the pitch), centred at 26.75 mm.
+  const Poly flange = {Vec3(0, 0, 0), Vec3(0.06, 0, 0), Vec3(0.06, 0.02, 0), Vec3(0, 0.02, 0)};
+  const RivetLayout r = layout_rivets(flange, 2, {}, {0.0, 6.5e-3, 0.0, 0.0});
+  ASSERT_EQ(r.points.size(), 2u);
+  EXPECT_NEAR(0.5 * (r.points[0].x() + r.points[1].x()), 26.75e-3, 1e-12);
+  EXPECT_NEAR(std::max(r.points[0].x(), r.points[1].x()), 26.75e-3 + 0.5 * r.pitch, 1e-12);
+  // The root (edge 0) is the bend to the parent: the row at 20 - e = 12.0625 mm
+  // from it must be e + SB from it. SB = 4 mm fits (11.9375 mm), 7.2 mm (a 90
+  // degree bend at R = 6.4 mm) does not: such a flange is too short to rivet.
+  EXPECT_EQ(layout_rivets(flange, 2, {}, {4e-3, 0.0, 0.0, 0.0}).points.size(), 2u);
+  EXPECT_THROW(layout_rivets(flange, 2, {}, {7.2e-3, 0.0, 0.0, 0.0}), FemError);
+  EXPECT_THROW(layout_rivets(flange, 2, {}, {0.0, 0.0}), FemError);  // one setback per edge
+}
+
 }  // namespace
 }  // namespace sheetgen

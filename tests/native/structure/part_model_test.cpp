@@ -285,7 +285,14 @@ TEST(PartModel, JsonTabsGiveTheSameModel) {
   const RealisedPart rp = realise(part);
   const nlohmann::json tabs = part_json(part, rp);
   const PlateGeometry g = plate_geometry_from_json(nlohmann::json{{"tabs", tabs}}.dump(), "result.json");
-  const StructuralResult a = analyse_part(p, 0, plate_geometry(part, rp));
+  const PlateGeometry direct = plate_geometry(part, rp);
+  // The bends the rivets keep clear of: the same from the JSON as from the tree.
+  EXPECT_EQ(g.edge_bend_angle, direct.edge_bend_angle);
+  int bent_edges = 0;
+  for (const auto& edges : direct.edge_bend_angle)
+    for (double a : edges) bent_edges += a > 0;
+  EXPECT_EQ(bent_edges, 2 * (part.size() - 1));  // each bend: the child's root and its parent's edge
+  const StructuralResult a = analyse_part(p, 0, direct);
   const StructuralResult b = analyse_part(p, 0, g);
   EXPECT_NEAR(a.compliance, b.compliance, 1e-9 * a.compliance);
 }
