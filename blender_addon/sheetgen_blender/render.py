@@ -173,7 +173,8 @@ def render_run(context, col, path, samples=32, resolution=RES, flat=True):
     candidates = [o for o in col.objects if o.get(CANDIDATE_KEY)]
     if not parts and not candidates:
         raise RenderError("run '%s' has no valid part to render" % col.name)
-    rivet_objs = [o for o in col.objects if o.name.endswith(" rivets")]
+    # Flange rivets and self-rivets alike: the red markers of where the part is riveted.
+    rivet_objs = [o for o in col.objects if o.name.endswith(" rivets") or o.name.endswith(" self-rivets")]
     env = scene_io.environment_objects(src, context.view_layer)
     load_objs = scene_io.load_objects(src, context.view_layer)
     made = {"objects": [], "meshes": [], "materials": []}

@@ -67,7 +67,7 @@ class GenerateCorner(unittest.TestCase):
         self.assertEqual([p["load"] for p in self.doc["parts"]], ["avionics_box"])
         self.assertEqual(self.part()["status"], "ok")
         self.assertEqual(sorted(o.name for o in self.col.objects),
-                         ["avionics_box flat", "avionics_box part", "avionics_box rivets"])
+                         ["avionics_box flat", "avionics_box flat holes", "avionics_box part", "avionics_box rivets"])
 
     def test_bent_mesh_matches_the_tabs(self):
         part = self.part()
@@ -108,6 +108,26 @@ class GenerateCorner(unittest.TestCase):
         obj = self.col.objects["avionics_box rivets"]
         self.assertEqual(len(obj.data.vertices), 6 * len(self.part()["rivets"]))
         self.assertEqual(len(obj.data.polygons), 8 * len(self.part()["rivets"]))
+
+    def test_flat_holes_sit_on_the_flat_pattern(self):
+        # One 16-gon per hole of flat_pattern.holes (one per rivet here: the corner part has no
+        # self-rivet), of the hole's area, on the flat's top face (flat mid-plane + t/2) and inside its outline.
+        from mathutils import Vector
+        holes = self.part()["flat_pattern"]["holes"]
+        self.assertEqual(len(holes), len(self.part()["rivets"]))
+        obj = self.col.objects["avionics_box flat holes"]
+        self.assertEqual(len(obj.data.polygons), len(holes))
+        n = 16
+        for poly, h in zip(obj.data.polygons, holes):
+            r = 0.5 * h["diameter"]
+            self.assertAlmostEqual(poly.area, 0.5 * n * r * r * np.sin(2 * np.pi / n), places=9)
+        flat = self.col.objects["avionics_box flat"]
+        t = self._problem().get("material", {}).get("thickness", 1.6e-3)
+        self.assertAlmostEqual(obj.location.z - flat.location.z, t / 2 + 1e-4, places=6)
+        xs = [(flat.matrix_world @ Vector(c)).x for c in flat.bound_box]
+        for v in obj.data.vertices:
+            w = obj.matrix_world @ v.co
+            self.assertTrue(min(xs) <= w.x <= max(xs))
 
     def test_results_panel_values_equal_result_json(self):
         from sheetgen_blender.core import result as core_result
