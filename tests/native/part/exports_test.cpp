@@ -11,6 +11,7 @@
 
 #include "sheetgen/part/bend_sequence.hpp"
 #include "sheetgen/part/exports.hpp"
+#include "../common/dxf_pairs.hpp"
 #include "../common/sample_part.hpp"
 #include "../common/sheet_fixture.hpp"
 
@@ -23,14 +24,7 @@ SheetSpec spec() { return fixtures::aluminium_sheet_1_6mm(); }
 
 Part sample() { return fixtures::four_bend_sample(); }
 
-// DXF as (code, value) pairs.
-std::vector<std::pair<int, std::string>> pairs(const std::string& dxf) {
-  std::istringstream in(dxf);
-  std::vector<std::pair<int, std::string>> out;
-  std::string code, value;
-  while (std::getline(in, code) && std::getline(in, value)) out.emplace_back(std::stoi(code), value);
-  return out;
-}
+std::vector<std::pair<int, std::string>> pairs(const std::string& dxf) { return fixtures::dxf_pairs(dxf); }
 
 int count(const std::vector<std::pair<int, std::string>>& p, int code, const std::string& value) {
   int n = 0;

@@ -9,6 +9,7 @@
 
 #include "sheetgen/part/exports.hpp"
 #include "sheetgen/part/rivet_holes.hpp"
+#include "../common/dxf_pairs.hpp"
 #include "../common/sample_part.hpp"
 #include "../common/sheet_fixture.hpp"
 
@@ -101,14 +102,7 @@ TEST(RivetHoles, AHoleOnATabThePartHasNotIsRefused) {
   }
 }
 
-// DXF (code, value) pairs.
-std::vector<std::pair<int, std::string>> pairs(const std::string& dxf) {
-  std::istringstream in(dxf);
-  std::vector<std::pair<int, std::string>> out;
-  std::string code, value;
-  while (std::getline(in, code) && std::getline(in, value)) out.emplace_back(std::stoi(code), value);
-  return out;
-}
+std::vector<std::pair<int, std::string>> pairs(const std::string& dxf) { return fixtures::dxf_pairs(dxf); }
 
 TEST(RivetHoles, DrawingsAndRivetTableShowEveryHole) {
   const Part part = fixtures::four_bend_sample();
