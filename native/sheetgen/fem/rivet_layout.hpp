@@ -48,8 +48,9 @@ std::vector<Vec3> rivet_footprint(const Vec3& centre, const Vec3& normal, double
 
 // polygon: planar convex, m; far_edge: index i of the edge from vertex i to
 // vertex i+1. edge_setback (m, per edge; empty = none): how far a bend zone on
-// that edge reaches into the polygon (its setback SB); a rivet keeps the edge
-// distance beyond it, on flat sheet, as check_rivet_flange's rivet region does.
+// that edge, or the relief notches cut at its ends, reach into the polygon; a
+// rivet keeps the edge distance beyond it, on flat sheet, as
+// check_rivet_flange's rivet region does.
 // Throws FemError when the flange cannot hold one rivet at the edge distance.
 RivetLayout layout_rivets(const std::vector<Vec3>& polygon, int far_edge, const RivetLayoutOptions& options = {},
                           const std::vector<double>& edge_setback = {});

@@ -132,7 +132,8 @@ std::vector<Vec2> rivet_region(const Part& part, const RealisedPart& rp, int i, 
   const RealisedTab& t = rp.tabs[i];
   std::vector<Vec2> poly = ccw(t.local);
   if (i > 0) poly = clip_half_plane(poly, Vec2(0, 1), bend_setback(part.tabs[i].params.theta3, spec));
-  // The bend zones of its children (a gusset on a flange's side edge): flat sheet only.
+  // The bend zones of its children (a gusset on a flange's side edge) and the
+  // relief notches cut into this tab at their ends: bend_zone_depth deep.
   const Vec2 centre = polygon_centroid(t.local);
   for (int c = i + 1; c < part.size(); ++c) {
     const Tab& child = part.tabs[c];
@@ -144,7 +145,7 @@ std::vector<Vec2> rivet_region(const Part& part, const RealisedPart& rp, int i, 
     if (!(n.norm() > 0)) continue;
     n.normalize();
     if (n.dot(centre - a) < 0) n = -n;  // into the tab
-    poly = clip_half_plane(poly, n, n.dot(a) + bend_setback(child.params.theta3, spec));
+    poly = clip_half_plane(poly, n, n.dot(a) + bend_zone_depth(child.params.theta3, spec));
   }
   if (poly.size() < 3) return {};
   return inset_convex(poly, spec.manufacturing.rivet_edge_distance);

@@ -55,7 +55,13 @@ PartModel build_part_model(const Problem& problem, int load_index, const PlateGe
     any_flange = true;
     std::vector<double> setback;
     if (k < geometry.edge_bend_angle.size())
-      for (double a : geometry.edge_bend_angle[k]) setback.push_back(a > 0 ? bend_setback(a, sheet) : 0.0);
+      for (size_t j = 0; j < geometry.edge_bend_angle[k].size(); ++j) {
+        const double a = geometry.edge_bend_angle[k][j];
+        // A tab's edge 0 is its root: the bend zone reaches SB into it. Any other
+        // bent edge is a child's: its relief notches are cut bend_zone_depth deep.
+        const bool root = k > 0 && j == 0;
+        setback.push_back(a <= 0 ? 0.0 : root ? bend_setback(a, sheet) : bend_zone_depth(a, sheet));
+      }
     layouts[k] = layout_rivets(geometry.polygons[k], geometry.rivet_edge[k], ro, setback);
     fixed[k] = layouts[k].all_points();
   }

@@ -24,7 +24,9 @@ struct PlateGeometry {
   std::vector<int> rivet_edge;  // per polygon: edge i (vertex i -> i+1) rivets run along
   // Per polygon, per edge: |angle| (rad) of the bend on that edge, 0 for a cut
   // edge (a tab's root, and its parent's edge it leaves from). Rivets keep
-  // their edge distance beyond the bend zone. Empty: no bends known.
+  // their edge distance beyond the bend zone: the setback on a tab's root
+  // (edge 0 of polygon k > 0), bend_zone_depth (the relief notches' depth) on a
+  // child's edge. Empty: no bends known.
   std::vector<std::vector<double>> edge_bend_angle;
 };
 

@@ -164,26 +164,30 @@ TEST(EnvironmentValidity, NoRoomForRivet) {
 }
 
 // A gusset bent off the flange's side edge 1 (its x = 0 side) takes its bend
-// zone from the rivet region too: at 30 deg SB = tan 15 deg (R + t/2) =
-// 1.929 mm, so x runs from SB + e = 9.867 to 20 - e = 12.0625 mm and the one
-// rivet sits at x = 10.965 mm (10 mm without the gusset). At 90 deg (SB =
-// 7.2 mm) nothing is left.
+// zone and the relief notches cut for it from the rivet region: bend_zone_depth
+// = max(R + t, SB + t/2) = 8.0 mm at 90 deg. On a 30 mm wide flange x runs
+// from 8.0 + e = 15.9375 to 30 - e = 22.0625 mm and the one rivet sits at
+// x = 19.0 mm (15.0 mm without the gusset). The 20 mm flange has no room left.
 TEST(EnvironmentValidity, GussetBendZoneIsNoPlaceForARivet) {
-  for (const double angle : {30.0, 90.0}) {
+  for (const double width : {0.03, 0.02}) {
     FlangeScene s = flange_scene(-0.01, -0.0308);
-    s.part.add_tab(2, 1, {0.005, 0.016, 0.02, 0, 0, angle * kDeg});
-    const RealisedPart rp = realise(s.part);
-    const FlangeAttachment fa = check_rivet_flange(s.part, rp, 2, s.problem);
-    if (angle == 90.0) {
+    for (int k : {1, 2}) s.part.tabs[k].params.w = width;
+    s.part.tabs[1].params.d = 0.005;
+    auto rivet_x = [&](const Part& part) {
+      const RealisedPart rp = realise(part);
+      const FlangeAttachment fa = check_rivet_flange(part, rp, 2, s.problem);
+      if (!fa.ok() || fa.rivets.size() != 1) return -1.0;
+      return (fa.rivets[0] - rp.tabs[2].origin).dot(rp.tabs[2].x_axis);
+    };
+    const double plain = rivet_x(s.part);
+    s.part.add_tab(2, 1, {0.005, 0.016, 0.02, 0, 0, 90 * kDeg});
+    const FlangeAttachment fa = check_rivet_flange(s.part, realise(s.part), 2, s.problem);
+    if (width == 0.02) {
       EXPECT_EQ(fa.reason, ValidityReason::NoRoomForRivet) << fa.message;
       continue;
     }
-    ASSERT_TRUE(fa.ok()) << fa.message;
-    ASSERT_EQ(fa.rivets.size(), 1u);
-    const RealisedTab& t = rp.tabs[2];
-    const double sb = std::tan(15 * kDeg) * (6.4e-3 + 0.8e-3);
-    const double x = (fa.rivets[0] - t.origin).dot(t.x_axis);
-    EXPECT_NEAR(x, 0.5 * (sb + 7.9375e-3 + 20e-3 - 7.9375e-3), 1e-12);
+    EXPECT_NEAR(plain, 15.0e-3, 1e-12);
+    EXPECT_NEAR(rivet_x(s.part), 19.0e-3, 1e-12);
   }
 }
 
