@@ -1,7 +1,8 @@
 #pragma once
 // Rivet positions on a rivet flange (docs/fem.md "Rivets"): one row parallel
 // to the flange's far edge, at the edge distance from it, at the pitch,
-// centred, keeping the edge distance from every other edge too. The points
+// centred, keeping the edge distance from every other edge and from the
+// flange's bend zones too. The points
 // are handed to mesh_plates() as fixed points so each rivet is a node; the
 // FEM clamps those nodes (rivet flange) or ties them (self-rivet).
 #include <vector>
@@ -47,12 +48,12 @@ double rivet_diameter(const RivetLayoutOptions& options);
 std::vector<Vec3> rivet_footprint(const Vec3& centre, const Vec3& normal, double radius, int points);
 
 // polygon: planar convex, m; far_edge: index i of the edge from vertex i to
-// vertex i+1. edge_setback (m, per edge; empty = none): how far a bend zone on
-// that edge, or the relief notches cut at its ends, reach into the polygon; a
-// rivet keeps the edge distance beyond it, on flat sheet, as
-// check_rivet_flange's rivet region does.
+// vertex i+1. keep_out: convex polygons in the flange's plane (m) where the
+// sheet is not flat, the bend zones and relief notches of the flange's bends:
+// every rivet keeps the edge distance from them too, as from a cut edge. The
+// row may then fall into pieces; each gets its own rivets at the pitch.
 // Throws FemError when the flange cannot hold one rivet at the edge distance.
 RivetLayout layout_rivets(const std::vector<Vec3>& polygon, int far_edge, const RivetLayoutOptions& options = {},
-                          const std::vector<double>& edge_setback = {});
+                          const std::vector<std::vector<Vec3>>& keep_out = {});
 
 }  // namespace sheetgen

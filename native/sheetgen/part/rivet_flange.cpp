@@ -132,21 +132,6 @@ std::vector<Vec2> rivet_region(const Part& part, const RealisedPart& rp, int i, 
   const RealisedTab& t = rp.tabs[i];
   std::vector<Vec2> poly = ccw(t.local);
   if (i > 0) poly = clip_half_plane(poly, Vec2(0, 1), bend_setback(part.tabs[i].params.theta3, spec));
-  // The bend zones of its children (a gusset on a flange's side edge) and the
-  // relief notches cut into this tab at their ends: bend_zone_depth deep.
-  const Vec2 centre = polygon_centroid(t.local);
-  for (int c = i + 1; c < part.size(); ++c) {
-    const Tab& child = part.tabs[c];
-    if (child.parent != i || child.params.theta3 == 0 || poly.size() < 3) continue;
-    const int k = child.parent_edge, m = static_cast<int>(t.local.size());
-    if (k < 0 || k >= m) continue;
-    const Vec2 a = t.local[k], b = t.local[(k + 1) % m];
-    Vec2 n(-(b - a).y(), (b - a).x());
-    if (!(n.norm() > 0)) continue;
-    n.normalize();
-    if (n.dot(centre - a) < 0) n = -n;  // into the tab
-    poly = clip_half_plane(poly, n, n.dot(a) + bend_zone_depth(child.params.theta3, spec));
-  }
   if (poly.size() < 3) return {};
   return inset_convex(poly, spec.manufacturing.rivet_edge_distance);
 }

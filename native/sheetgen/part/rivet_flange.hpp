@@ -25,10 +25,8 @@ FlangeAttachment check_rivet_flange(const Part& part, const RealisedPart& realis
                                     const ValidityOptions& options = {});
 
 // Region of a flange where rivet centres may go, in the flange's local frame
-// (m): the flange minus its root bend zone (y >= setback) and minus the bend
-// zones of its children (a gusset on a side edge) with the relief notches cut
-// for them (bend_zone_depth from that edge), inset by the rivet edge distance
-// on every edge. Empty when there is no room.
+// (m): the flange minus its root bend zone (y >= setback), inset by the rivet
+// edge distance on every edge. Empty when there is no room.
 std::vector<Vec2> rivet_region(const Part& part, const RealisedPart& realised, int tab, const SheetSpec& spec);
 // Rivet centres (world, m): a row along the flange's root direction through the
 // middle of rivet_region, spaced at the rivet pitch and centred; one rivet at the

@@ -18,16 +18,50 @@ PlateGeometry plate_geometry(const Part& part, const RealisedPart& realised) {
     g.polygons.push_back(realised.tabs[i].corners);
     g.rivet_area.push_back(part.tabs[i].rivet_area);
     g.rivet_edge.push_back(i == 0 ? 0 : kFarEdge);
-    g.edge_bend_angle.emplace_back(realised.tabs[i].corners.size(), 0.0);
-  }
-  for (int i = 1; i < part.size(); ++i) {
-    const double a = std::abs(part.tabs[i].params.theta3);
-    const int parent = part.tabs[i].parent, edge = part.tabs[i].parent_edge;
-    g.edge_bend_angle[i][0] = std::max(g.edge_bend_angle[i][0], a);  // edge 0: the root P1 -> P0
-    if (edge >= 0 && edge < static_cast<int>(g.edge_bend_angle[parent].size()))
-      g.edge_bend_angle[parent][edge] = std::max(g.edge_bend_angle[parent][edge], a);
+    g.parent.push_back(i == 0 ? -1 : part.tabs[i].parent);
+    g.bend_angle.push_back(i == 0 ? 0.0 : std::abs(part.tabs[i].params.theta3));
   }
   return g;
+}
+
+namespace {
+
+// The rectangle in polygon `into`'s plane along segment [a, b], extended by
+// `extend` beyond both ends and `depth` deep into the polygon (m).
+std::vector<Vec3> strip(const std::vector<Vec3>& into, const Vec3& a, const Vec3& b, double extend, double depth) {
+  Vec3 n = Vec3::Zero(), c = Vec3::Zero();
+  for (size_t i = 0; i < into.size(); ++i) {
+    n += into[i].cross(into[(i + 1) % into.size()]);
+    c += into[i] / static_cast<double>(into.size());
+  }
+  const Vec3 u = (b - a).normalized();
+  Vec3 v = n.normalized().cross(u);
+  if (v.dot(c - a) < 0) v = -v;  // towards the polygon
+  const Vec3 p = a - extend * u, q = b + extend * u;
+  return {p, q, q + depth * v, p + depth * v};
+}
+
+}  // namespace
+
+std::vector<std::vector<Vec3>> bend_keep_out(const PlateGeometry& g, int k, const SheetSpec& sheet) {
+  std::vector<std::vector<Vec3>> zones;
+  if (g.parent.size() != g.polygons.size() || g.bend_angle.size() != g.polygons.size()) return zones;
+  const auto& poly = g.polygons[k];
+  // Its own root: the bend zone reaches the setback SB into it along the whole
+  // edge (extended by the polygon's size: the zone is a half-plane for it).
+  if (g.parent[k] >= 0 && g.bend_angle[k] > 0 && poly.size() >= 2) {
+    double size = 0;
+    for (const Vec3& p : poly) size = std::max(size, (p - poly[0]).norm());
+    zones.push_back(strip(poly, poly[0], poly[1], size, bend_setback(g.bend_angle[k], sheet)));
+  }
+  // Each bent child: its bend zone on this polygon's edge, with the relief
+  // notches cut beside it (width t, bend_zone_depth deep; FlatPatternOptions).
+  for (size_t c = 0; c < g.polygons.size(); ++c) {
+    if (g.parent[c] != k || !(g.bend_angle[c] > 0) || g.polygons[c].size() < 2) continue;
+    zones.push_back(strip(poly, g.polygons[c][0], g.polygons[c][1], sheet.thickness,
+                          bend_zone_depth(g.bend_angle[c], sheet)));
+  }
+  return zones;
 }
 
 PartModel build_part_model(const Problem& problem, int load_index, const PlateGeometry& geometry, const PartModelOptions& options) {
@@ -53,16 +87,7 @@ PartModel build_part_model(const Problem& problem, int load_index, const PlateGe
   for (size_t k = 0; k < geometry.polygons.size(); ++k) {
     if (geometry.rivet_area[k] < 0) continue;
     any_flange = true;
-    std::vector<double> setback;
-    if (k < geometry.edge_bend_angle.size())
-      for (size_t j = 0; j < geometry.edge_bend_angle[k].size(); ++j) {
-        const double a = geometry.edge_bend_angle[k][j];
-        // A tab's edge 0 is its root: the bend zone reaches SB into it. Any other
-        // bent edge is a child's: its relief notches are cut bend_zone_depth deep.
-        const bool root = k > 0 && j == 0;
-        setback.push_back(a <= 0 ? 0.0 : root ? bend_setback(a, sheet) : bend_zone_depth(a, sheet));
-      }
-    layouts[k] = layout_rivets(geometry.polygons[k], geometry.rivet_edge[k], ro, setback);
+    layouts[k] = layout_rivets(geometry.polygons[k], geometry.rivet_edge[k], ro, bend_keep_out(geometry, k, sheet));
     fixed[k] = layouts[k].all_points();
   }
   if (!any_flange)
@@ -219,19 +244,17 @@ PlateGeometry plate_geometry_from_json(const std::string& text, const std::strin
     const long long ra = tab.has("rivet_area") ? tab.at("rivet_area").as_integer() : -1;
     g.rivet_area.push_back(static_cast<int>(ra));
     g.rivet_edge.push_back(i == 0 ? 0 : kFarEdge);
-    g.edge_bend_angle.emplace_back(poly.size(), 0.0);
-  }
-  // Bends from the tree, as plate_geometry() has them, when the tabs carry it.
-  for (size_t i = 1; i < tabs.size(); ++i) {
-    const JsonNode tab = tabs.at(i);
-    if (!tab.has("parent") || !tab.has("parameters") || tab.at("parameters").raw().is_null()) continue;
-    const long long parent = tab.at("parent").as_integer();
-    if (parent < 0 || parent >= static_cast<long long>(i)) tab.at("parent").fail("must be the index of an earlier tab");
-    const double a = std::abs(tab.at("parameters").number_or("theta3", 0.0));
-    g.edge_bend_angle[i][0] = std::max(g.edge_bend_angle[i][0], a);
-    const long long edge = tab.integer_or("parent_edge", -1);
-    if (edge >= 0 && edge < static_cast<long long>(g.edge_bend_angle[parent].size()))
-      g.edge_bend_angle[parent][edge] = std::max(g.edge_bend_angle[parent][edge], a);
+    // The bend to its parent, as plate_geometry() has it, when the tab carries it.
+    int parent = -1;
+    double angle = 0;
+    if (i > 0 && tab.has("parent") && tab.has("parameters") && !tab.at("parameters").raw().is_null()) {
+      const long long pi = tab.at("parent").as_integer();
+      if (pi < 0 || pi >= static_cast<long long>(i)) tab.at("parent").fail("must be the index of an earlier tab");
+      parent = static_cast<int>(pi);
+      angle = std::abs(tab.at("parameters").number_or("theta3", 0.0));
+    }
+    g.parent.push_back(parent);
+    g.bend_angle.push_back(angle);
   }
   return g;
 }

@@ -22,12 +22,12 @@ struct PlateGeometry {
   std::vector<std::vector<Vec3>> polygons;
   std::vector<int> rivet_area;  // per polygon
   std::vector<int> rivet_edge;  // per polygon: edge i (vertex i -> i+1) rivets run along
-  // Per polygon, per edge: |angle| (rad) of the bend on that edge, 0 for a cut
-  // edge (a tab's root, and its parent's edge it leaves from). Rivets keep
-  // their edge distance beyond the bend zone: the setback on a tab's root
-  // (edge 0 of polygon k > 0), bend_zone_depth (the relief notches' depth) on a
-  // child's edge. Empty: no bends known.
-  std::vector<std::vector<double>> edge_bend_angle;
+  // The bends, so rivets stay on flat sheet (docs/fem.md "Rivets"): per polygon
+  // its parent polygon (-1: none) and |theta3| of the bend between them (rad;
+  // 0: a flat extension, no bend). A bent polygon's first edge (corner 0 -> 1)
+  // is its root on the parent's edge. Empty: no bends known.
+  std::vector<int> parent;
+  std::vector<double> bend_angle;
 };
 
 // A self-rivet: two points (one on each sheet, m) that are tied rigidly.
@@ -51,8 +51,15 @@ struct PartModel {
 };
 
 // Tabs of a realised part as plate geometry; a rivet flange's rivets run along its far edge.
-// edge_bend_angle from the tab tree (flat extensions are no bends).
+// parent and bend_angle from the tab tree (flat extensions are no bends).
 PlateGeometry plate_geometry(const Part& part, const RealisedPart& realised);
+
+// Where polygon k's sheet is not flat, as convex polygons in its plane (m):
+// its root's bend zone (the setback deep along the whole root) and, per bent
+// child, the child's bend zone on k's edge with the relief notches beside it
+// (bend_zone_depth deep, t beyond each end). Rivets keep the edge distance
+// from them. Empty when the geometry has no bends.
+std::vector<std::vector<Vec3>> bend_keep_out(const PlateGeometry& geometry, int k, const SheetSpec& sheet);
 
 // Throws FemError (a sentence naming the cause) when the model cannot be built:
 // no rivet flange (nothing holds the part: a mechanism), no base-tab node under

@@ -322,21 +322,33 @@ TEST(RivetLayout, DefaultsForSixteenHundredthsSheet) {
 }
 
 TEST(RivetLayout, BendZonesKeepTheRowOnFlatSheet) {
-  // The flange of DefaultsForSixteenHundredthsSheet with a gusset bent off its
-  // side edge 1 (x = 60 mm) whose zone reaches s = 6.5 mm into it: the row
-  // keeps e beyond it, so it spans x in [e, 60 - e - s] = [7.9375, 45.5625] mm
-  // (37.625 mm: still 2 rivets at the pitch), centred at 26.75 mm.
+  // The flange of DefaultsForSixteenHundredthsSheet (60 x 20 mm, row at
+  // y = 20 - e = 12.0625 mm, x in [e, 60 - e] = [7.9375, 52.0625] mm).
   const Poly flange = {Vec3(0, 0, 0), Vec3(0.06, 0, 0), Vec3(0.06, 0.02, 0), Vec3(0, 0.02, 0)};
-  const RivetLayout r = layout_rivets(flange, 2, {}, {0.0, 6.5e-3, 0.0, 0.0});
-  ASSERT_EQ(r.points.size(), 2u);
-  EXPECT_NEAR(0.5 * (r.points[0].x() + r.points[1].x()), 26.75e-3, 1e-12);
-  EXPECT_NEAR(std::max(r.points[0].x(), r.points[1].x()), 26.75e-3 + 0.5 * r.pitch, 1e-12);
-  // The root (edge 0) is the bend to the parent: the row at 20 - e = 12.0625 mm
-  // from it must be e + SB from it. SB = 4 mm fits (11.9375 mm), 7.2 mm (a 90
-  // degree bend at R = 6.4 mm) does not: such a flange is too short to rivet.
-  EXPECT_EQ(layout_rivets(flange, 2, {}, {4e-3, 0.0, 0.0, 0.0}).points.size(), 2u);
-  EXPECT_THROW(layout_rivets(flange, 2, {}, {7.2e-3, 0.0, 0.0, 0.0}), FemError);
-  EXPECT_THROW(layout_rivets(flange, 2, {}, {0.0, 0.0}), FemError);  // one setback per edge
+  auto rect = [](double x0, double x1, double y0, double y1) {
+    return Poly{Vec3(x0, y0, 0), Vec3(x1, y0, 0), Vec3(x1, y1, 0), Vec3(x0, y1, 0)};
+  };
+  // A gusset's zone on side edge 1 along its whole length, 8 mm deep: the row
+  // keeps e from it, x in [7.9375, 44.0625] mm (36.125: 2 rivets), centred at 26 mm.
+  const RivetLayout whole = layout_rivets(flange, 2, {}, {rect(0.052, 0.06, -0.001, 0.021)});
+  ASSERT_EQ(whole.points.size(), 2u);
+  EXPECT_NEAR(0.5 * (whole.points[0].x() + whole.points[1].x()), 26e-3, 1e-9);
+  // The same zone ending 4 mm above the root, y in [-1, 4] mm: 8.0625 mm from
+  // the row, more than e. Nothing moves.
+  const RivetLayout low = layout_rivets(flange, 2, {}, {rect(0.052, 0.06, -0.001, 0.004)});
+  ASSERT_EQ(low.points.size(), 2u);
+  EXPECT_NEAR(0.5 * (low.points[0].x() + low.points[1].x()), 30e-3, 1e-9);
+  // A zone across the middle, x in [26, 34] mm: the row breaks into
+  // [7.9375, 18.0625] and [41.9375, 52.0625], one rivet centred in each, at 13 and 47 mm.
+  const RivetLayout split = layout_rivets(flange, 2, {}, {rect(0.026, 0.034, 0.0, 0.02)});
+  ASSERT_EQ(split.points.size(), 2u);
+  // (in the row's direction, along the far edge from (60, 20) to (0, 20))
+  EXPECT_NEAR(split.points[0].x(), 47e-3, 1e-9);
+  EXPECT_NEAR(split.points[1].x(), 13e-3, 1e-9);
+  // The root's bend zone as deep as the row is close: SB = 7.2 mm (90 deg at
+  // R = 6.4 mm) leaves 12.0625 - 7.2 = 4.86 mm < e: no flat sheet for a rivet.
+  EXPECT_THROW(layout_rivets(flange, 2, {}, {rect(-0.01, 0.07, 0.0, 7.2e-3)}), FemError);
+  EXPECT_EQ(layout_rivets(flange, 2, {}, {rect(-0.01, 0.07, 0.0, 4e-3)}).points.size(), 2u);
 }
 
 }  // namespace

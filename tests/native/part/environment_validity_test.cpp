@@ -163,33 +163,5 @@ TEST(EnvironmentValidity, NoRoomForRivet) {
   EXPECT_EQ(fa.reason, ValidityReason::NoRoomForRivet) << fa.message;
 }
 
-// A gusset bent off the flange's side edge 1 (its x = 0 side) takes its bend
-// zone and the relief notches cut for it from the rivet region: bend_zone_depth
-// = max(R + t, SB + t/2) = 8.0 mm at 90 deg. On a 30 mm wide flange x runs
-// from 8.0 + e = 15.9375 to 30 - e = 22.0625 mm and the one rivet sits at
-// x = 19.0 mm (15.0 mm without the gusset). The 20 mm flange has no room left.
-TEST(EnvironmentValidity, GussetBendZoneIsNoPlaceForARivet) {
-  for (const double width : {0.03, 0.02}) {
-    FlangeScene s = flange_scene(-0.01, -0.0308);
-    for (int k : {1, 2}) s.part.tabs[k].params.w = width;
-    s.part.tabs[1].params.d = 0.005;
-    auto rivet_x = [&](const Part& part) {
-      const RealisedPart rp = realise(part);
-      const FlangeAttachment fa = check_rivet_flange(part, rp, 2, s.problem);
-      if (!fa.ok() || fa.rivets.size() != 1) return -1.0;
-      return (fa.rivets[0] - rp.tabs[2].origin).dot(rp.tabs[2].x_axis);
-    };
-    const double plain = rivet_x(s.part);
-    s.part.add_tab(2, 1, {0.005, 0.016, 0.02, 0, 0, 90 * kDeg});
-    const FlangeAttachment fa = check_rivet_flange(s.part, realise(s.part), 2, s.problem);
-    if (width == 0.02) {
-      EXPECT_EQ(fa.reason, ValidityReason::NoRoomForRivet) << fa.message;
-      continue;
-    }
-    EXPECT_NEAR(plain, 15.0e-3, 1e-12);
-    EXPECT_NEAR(rivet_x(s.part), 19.0e-3, 1e-12);
-  }
-}
-
 }  // namespace
 }  // namespace sheetgen

@@ -279,6 +279,29 @@ TEST(PartModel, BranchOfCornerObstaclePartMeshes) {
   std::printf("corner_obstacle branch: %zu triangles, %.6g of %.6g m^2\n", pm.model.triangles.size(), mesh, plates);
 }
 
+// The hat's flange 2 (on leg 1's far edge) with a gusset-like child on its
+// side edge bent 60 deg: two keep-out zones, its root strip SB = tan 45 deg
+// (R + t/2) deep and the child's zone bend_zone_depth = max(R + t, SB(60) + t/2)
+// deep and t longer than the child's root at both ends.
+TEST(PartModel, BendKeepOutZonesFollowTheTree) {
+  const Problem p = bracket_problem();
+  Part part = hat_part(p);
+  const int child = part.add_tab(2, 1, {0.002, 0.02, 0.02, 0, 0, M_PI / 3});
+  const RealisedPart rp = realise(part);
+  const PlateGeometry g = plate_geometry(part, rp);
+  const SheetSpec sheet = SheetSpec::from(p);
+  const auto zones = bend_keep_out(g, 2, sheet);
+  ASSERT_EQ(zones.size(), 2u);
+  auto depth = [](const std::vector<Vec3>& z) { return (z[3] - z[0]).norm(); };
+  EXPECT_NEAR(depth(zones[0]), bend_setback(M_PI / 2, sheet), 1e-12);
+  EXPECT_NEAR(depth(zones[1]), bend_zone_depth(M_PI / 3, sheet), 1e-12);
+  EXPECT_NEAR((zones[1][1] - zones[1][0]).norm(), 0.02 + 2 * sheet.thickness, 1e-12);
+  // Into the flange: the zone's far side lies on the flange's side of its root.
+  const Vec3 c = 0.25 * (rp.tabs[2].corners[0] + rp.tabs[2].corners[1] + rp.tabs[2].corners[2] + rp.tabs[2].corners[3]);
+  EXPECT_LT((zones[1][3] - c).norm(), (zones[1][0] - c).norm());
+  EXPECT_TRUE(bend_keep_out(g, child, sheet).size() == 1u);  // a leaf: its root only
+}
+
 TEST(PartModel, JsonTabsGiveTheSameModel) {
   const Problem p = bracket_problem();
   const Part part = hat_part(p);
@@ -287,11 +310,8 @@ TEST(PartModel, JsonTabsGiveTheSameModel) {
   const PlateGeometry g = plate_geometry_from_json(nlohmann::json{{"tabs", tabs}}.dump(), "result.json");
   const PlateGeometry direct = plate_geometry(part, rp);
   // The bends the rivets keep clear of: the same from the JSON as from the tree.
-  EXPECT_EQ(g.edge_bend_angle, direct.edge_bend_angle);
-  int bent_edges = 0;
-  for (const auto& edges : direct.edge_bend_angle)
-    for (double a : edges) bent_edges += a > 0;
-  EXPECT_EQ(bent_edges, 2 * (part.size() - 1));  // each bend: the child's root and its parent's edge
+  EXPECT_EQ(g.parent, direct.parent);
+  EXPECT_EQ(g.bend_angle, direct.bend_angle);
   const StructuralResult a = analyse_part(p, 0, direct);
   const StructuralResult b = analyse_part(p, 0, g);
   EXPECT_NEAR(a.compliance, b.compliance, 1e-9 * a.compliance);
