@@ -112,7 +112,20 @@ std::vector<SelfRivetPlan> gusset_plans(const Part& part, const RealisedPart& rp
     const double margin = bend_zone_depth(theta3, spec) + std::abs(bend_length_change(theta3, spec) * std::tan(lean)) + 0.5e-3;
     const std::optional<EdgeSpan> span = free_edge_span(part, rp, e, theta3, margin, spec);
     if (!span) return std::nullopt;
-    const double lo = span->lo, w = span->width();
+    double lo = span->lo, hi = span->lo + span->width();
+    // On a rivet flange's side edge, stop short of the rivet row: the gusset's
+    // bend zone and the relief notch beyond its root's end (t) must stay the
+    // edge distance from the row, which runs e from the far edge (docs/fem.md
+    // "Rivets"). Else the flange loses the rivet nearest the gusset, which is
+    // the one that carries the gusset's load into the structure.
+    if (part.tabs[e.tab].rivet_area >= 0 && e.tab > 0 && t.corners.size() == 4) {
+      const double reserve = 2.0 * mf.rivet_edge_distance + problem.material.thickness + 0.5e-3;
+      auto to_far = [&](const Vec3& p) { return std::min((p - t.corners[2]).norm(), (p - t.corners[3]).norm()); };
+      const double len = (e.b - e.a).norm();
+      if (to_far(e.a) < 1e-6) lo = std::max(lo, reserve);
+      else if (to_far(e.b) < 1e-6) hi = std::min(hi, len - reserve);
+    }
+    const double w = hi - lo;
     if (w < mf.min_tab_width) return std::nullopt;
     return Side{&e, dir, v, theta3, lean, lo, w, reach};
   };

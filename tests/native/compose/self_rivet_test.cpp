@@ -112,6 +112,47 @@ TEST(SelfRivet, GussetTiesTheBaseToItsFlangeAndStiffensTheSpringboard) {
 }
 
 
+// A gusset on the flange's side edge stops short of the flange's rivet row:
+// its root ends at least 2 e + t from the far edge, so its bend zone and the
+// relief notch beyond it keep e from the row, and the flange keeps every rivet
+// it has without the gusset (the FEM's layout would drop the nearest one).
+TEST(SelfRivet, GussetOnAFlangeLeavesItsRivetRowWhole) {
+  const Problem p = wall_problem();
+  const Part part = springboard(p);
+  const RealisedPart rp = realise(part);
+  const PartModel plain = build_part_model(p, 0, plate_geometry(part, rp));
+  auto flange_rivets = [](const PartModel& pm) {
+    int n = 0;
+    for (int k : pm.rivet_polygon) n += k == 1;
+    return n;
+  };
+  const double e = p.manufacturing.rivet_edge_distance, t = p.material.thickness;
+  int on_flange = 0;
+  for (const auto& pair : visible_edge_pairs(part, rp, t)) {
+    if (!((pair.a.tab == 0 && pair.b.tab == 1) || (pair.a.tab == 1 && pair.b.tab == 0))) continue;
+    for (const auto& plan : gusset_plans(part, rp, pair, p)) {
+      const RealisedPart grp = realise(plan.part);
+      for (int g : {plan.tab_a, plan.tab_b}) {
+        if (plan.part.tabs[g].parent != 1) continue;
+        ++on_flange;
+        // Far edge of the flange: corners 2 -> 3. Both root ends of the gusset keep 2 e + t from its line.
+        const Vec3 f0 = grp.tabs[1].corners[2], f1 = grp.tabs[1].corners[3];
+        const Vec3 u = (f1 - f0).normalized();
+        for (int c : {0, 1}) {
+          const Vec3 r = grp.tabs[g].corners[c] - f0;
+          EXPECT_GE((r - r.dot(u) * u).norm(), 2 * e + t - 1e-9);
+        }
+      }
+      PartModelOptions mo;
+      for (size_t r = 0; r < plan.rivets_a.size(); ++r)
+        mo.self_rivets.push_back(SelfRivetTie{plan.tab_a, plan.tab_b, plan.rivets_a[r], plan.rivets_b[r]});
+      EXPECT_EQ(flange_rivets(build_part_model(p, 0, plate_geometry(plan.part, grp), mo)), flange_rivets(plain));
+    }
+  }
+  std::printf("%d gussets on the flange, each leaving its %d rivets\n", on_flange, flange_rivets(plain));
+  EXPECT_GT(on_flange, 0);
+}
+
 // A tab folded under the base (interior angle 60 deg): a gusset square to its
 // edge would cross the other tab's edge, and a gusset on the tab's side edge
 // would start inside the tab's own root bend zone. Both are fitted: every
