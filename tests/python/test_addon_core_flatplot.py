@@ -50,6 +50,16 @@ class FlatPlotLabels(unittest.TestCase):
         self.assertAlmostEqual(abs(dx), 14.0, places=6)
         self.assertAlmostEqual(dy, 0.0, places=6)
 
+    def test_holes_are_circles_of_their_diameter(self):
+        p = part([0.06])
+        p["flat_pattern"]["holes"] = [{"kind": "flange", "centre": [0.03, 0.04], "diameter": 0.004},
+                                      {"kind": "self", "centre": [0.09, 0.04], "diameter": 0.004}]
+        fig, _ = flatplot.build_figure(p)
+        from matplotlib.patches import Circle
+        circles = [c for c in fig.axes[0].patches if isinstance(c, Circle)]
+        self.assertEqual([(c.center, c.radius) for c in circles], [((30.0, 40.0), 2.0), ((90.0, 40.0), 2.0)])  # mm
+        self.assertNotEqual(circles[0].get_edgecolor(), circles[1].get_edgecolor())
+
     def test_draw_writes_a_png(self):
         import tempfile
         with tempfile.TemporaryDirectory() as tmp:

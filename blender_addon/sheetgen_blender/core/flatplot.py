@@ -1,7 +1,8 @@
 """The flat pattern of one part as a PNG, drawn with matplotlib from result.json (no bpy).
 
-Outline filled light grey, reliefs outlined, bend lines dashed (red: down,
-blue: up) with their number and angle, a 50 mm scale bar. matplotlib is
+Outline filled light grey, reliefs outlined, rivet holes as circles
+(magenta; self-rivet holes cyan), bend lines dashed (red: down, blue: up) with
+their number and angle, a 50 mm scale bar. matplotlib is
 imported lazily (Agg backend): ``available()`` says whether it is there.
 """
 import math
@@ -40,6 +41,13 @@ def build_figure(part, width_px=800, height_px=500, dpi=100):
         pts = [(x * mm, y * mm) for x, y in rl.get("polygon", [])]
         if pts:
             ax.add_patch(Polygon(pts, closed=True, facecolor="none", edgecolor="#8a5a00", linewidth=0.8))
+    from matplotlib.patches import Circle
+    for h in fp.get("holes", []):
+        # Rivet holes magenta, self-rivet holes cyan, as in flat.dxf / flat.svg.
+        colour = "#0a8f9f" if h.get("kind") == "self" else "#b0209f"
+        cx, cy = h["centre"]
+        ax.add_patch(Circle((cx * mm, cy * mm), 0.5 * h["diameter"] * mm, facecolor="none", edgecolor=colour,
+                            linewidth=1.0))
     if xs:
         span = max(max(xs) - min(xs), max(ys) - min(ys))
         pad = 0.06 * span
