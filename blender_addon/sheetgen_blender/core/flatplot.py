@@ -47,7 +47,7 @@ def build_figure(part, width_px=800, height_px=500, dpi=100):
         colour = "#0a8f9f" if h.get("kind") == "self" else "#b0209f"
         cx, cy = h["centre"]
         ax.add_patch(Circle((cx * mm, cy * mm), 0.5 * h["diameter"] * mm, facecolor="none", edgecolor=colour,
-                            linewidth=1.0))
+                            linewidth=1.0, zorder=5))  # over a bend label that lands on it
     if xs:
         span = max(max(xs) - min(xs), max(ys) - min(ys))
         pad = 0.06 * span
