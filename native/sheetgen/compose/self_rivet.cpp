@@ -156,7 +156,7 @@ std::vector<SelfRivetPlan> gusset_plans(const Part& part, const RealisedPart& rp
       // Its flat sheet, where a rivet may go: beyond the bend zone at its root
       // (the setback SB, measured square to the root as l is).
       auto flat_rect = [&](const Side& s, double l) {
-        const double f = std::min(1.0, bend_setback(s.theta3, SheetSpec::from(problem)) / l);
+        const double f = std::min(1.0, bend_setback(s.theta3, spec) / l);
         const Vec3 p0 = s.e->a + s.d * s.dir, p1 = p0 + s.w * s.dir;
         const Vec3 side = l * (s.v + std::tan(s.theta2) * s.dir);
         return ccw({to2(p0 + f * side), to2(p1 + f * side), to2(p1 + side), to2(p0 + side)});

@@ -5,6 +5,8 @@
 // self-rivet is two holes, one in each sheet it joins, that meet when the part
 // is bent; it can be set once both sheets are in place, after the last bend
 // on the way from the base to either of them.
+#include <cstdint>
+#include <string>
 #include <vector>
 
 #include "sheetgen/part/flat_pattern.hpp"
