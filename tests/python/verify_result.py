@@ -424,7 +424,7 @@ def check_part(out_dir, prob, meshes, part, args, report, bad):
             bad.append(f"{name}: DXF outline is not a simple closed polygon")
         if abs(poly.area - area_mm2) > 1e-6 * area_mm2:
             bad.append(f"{name}: DXF area {poly.area:.3f} mm^2 differs from result.json {area_mm2:.3f} mm^2")
-    check_holes(out_dir, prob, part, report, bad)
+    check_holes(out_dir, prob, part, report, bad, doc)
 
 
 def rivet_shank_diameter(prob, t):
@@ -445,8 +445,8 @@ def tab_plane(corners):
     return C, n / np.linalg.norm(n)
 
 
-def check_holes(out_dir, prob, part, report, bad):
-    """The rivet and self-rivet holes of flat.dxf (ezdxf) against result.json's
+def check_holes(out_dir, prob, part, report, bad, doc=None):
+    """The rivet and self-rivet holes of flat.dxf (ezdxf; `doc` when already read) against result.json's
     rivets: one CIRCLE per rivet on RIVET_HOLES and two per self-rivet on
     SELF_RIVET_HOLES, a rivet of diameter d fits with at most 0.2 mm play, each
     hole lies inside the outline by at least its radius. rivets.csv names each
@@ -457,7 +457,8 @@ def check_holes(out_dir, prob, part, report, bad):
     name = part["load"]
     t = prob.get("material", {}).get("thickness", 1.6e-3)
     d = rivet_shank_diameter(prob, t) * 1e3  # mm
-    doc = ezdxf.readfile(os.path.join(out_dir, name, "flat.dxf"))
+    if doc is None:
+        doc = ezdxf.readfile(os.path.join(out_dir, name, "flat.dxf"))
     msp = doc.modelspace()
     outline = [e for e in msp if e.dxf.layer == "CUT" and e.dxftype() == "POLYLINE"]
     if len(outline) != 1:

@@ -147,20 +147,16 @@ std::vector<SelfRivetPlan> gusset_plans(const Part& part, const RealisedPart& rp
     for (double fb : fractions) {
       const double la = std::clamp(fa * side_a.reach, mf.min_tab_length, mf.max_tab_length);
       const double lb = std::clamp(fb * side_b.reach, mf.min_tab_length, mf.max_tab_length);
-      // The gusset quad: root [P0, P1] on the edge, sides along the leaning centre line.
-      auto rect = [&](const Side& s, double l) {
-        const Vec3 p0 = s.e->a + s.d * s.dir, p1 = p0 + s.w * s.dir;
-        const Vec3 side = l * (s.v + std::tan(s.theta2) * s.dir);
-        return ccw({to2(p0), to2(p1), to2(p1 + side), to2(p0 + side)});
-      };
-      // Its flat sheet, where a rivet may go: beyond the bend zone at its root
-      // (the setback SB, measured square to the root as l is).
-      auto flat_rect = [&](const Side& s, double l) {
-        const double f = std::min(1.0, bend_setback(s.theta3, spec) / l);
+      // The gusset quad: root [P0, P1] on the edge, sides along the leaning
+      // centre line; from `start` (m, square to the root as l is) on.
+      auto rect = [&](const Side& s, double l, double start = 0.0) {
+        const double f = std::min(1.0, start / l);
         const Vec3 p0 = s.e->a + s.d * s.dir, p1 = p0 + s.w * s.dir;
         const Vec3 side = l * (s.v + std::tan(s.theta2) * s.dir);
         return ccw({to2(p0 + f * side), to2(p1 + f * side), to2(p1 + side), to2(p0 + side)});
       };
+      // Its flat sheet, where a rivet may go: beyond the bend zone at its root.
+      auto flat_rect = [&](const Side& s, double l) { return rect(s, l, bend_setback(s.theta3, spec)); };
       // Each gusset lies in the common plane, which holds the other edge: the
       // other tab leaves the plane along that edge, so the gusset must keep the
       // sheets' clearance from it. Where two edges meet at an acute corner a
