@@ -1,0 +1,229 @@
+#!/usr/bin/python3
+"""The expert stand-in on a multi-load problem, completed with the next gauge up.
+
+Our stand-in for the expert's practice is the solver restricted to right angles
+(`--right-angles`, docs/results.md). On the avionics bay it finds no part for
+three heavy loads at the problem's sheet (0.063 in): a right-angle bracket of
+that sheet is too soft for them, and a hat bracket drawn by hand is too
+(docs/gauge_baseline.md). A designer would then take the next standard 2024-T3
+gauge. This script does the same, so the bay gets a whole-bay total to set
+against the free-angle run:
+
+1. the problem is solved with free angles (`sheetgen solve`, or --free reuses
+   an output of the same problem);
+2. the expert stand-in solves the loads one by one in the problem's order, as
+   sheetgen does: each load alone with `--right-angles`, at the problem's
+   sheet first and then at each standard gauge up (GAUGES_IN) until it has a
+   part, with every part before it (both faces of its sheet, at its own
+   thickness) as an obstacle, as sheetgen makes earlier parts obstacles;
+3. material is compared by area and by mass (the gauges differ).
+
+With --verify each folder is checked by tests/python/verify_result.py
+(brute-force clearance, rivet flanges, CalculiX, DXF). One solve at a time.
+
+    /usr/bin/python3 bench/gauge_baseline.py [--problem P] [--out DIR] [--free DIR]
+                                              [--verify] [--doc docs/gauge_baseline.md]
+
+The doc's "## Reading" section, written by hand, is kept when the table is remade.
+"""
+import argparse
+import copy
+import json
+import os
+import subprocess
+import sys
+import time
+
+import numpy as np
+
+ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+sys.path.insert(0, os.path.join(ROOT, "tests", "python"))
+from verify_result import load_rotation  # noqa: E402
+INCH = 0.0254
+# Standard 2024-T3 sheet thicknesses above 0.063 in (AMS-QQ-A-250/4 sizes), in.
+GAUGES_IN = [0.071, 0.080, 0.090, 0.100, 0.125, 0.160]
+
+
+def solve(sheetgen, problem, out, extra):
+    start = time.monotonic()
+    p = subprocess.run([sheetgen, "solve", problem, "--out", out, "--threads", "2"] + extra,
+                       stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True, stdin=subprocess.DEVNULL)
+    wall = time.monotonic() - start
+    if p.returncode not in (0, 2):
+        sys.exit(f"gauge_baseline: {problem}: sheetgen exited {p.returncode}:\n{p.stdout[-2000:]}")
+    return wall
+
+
+def read_result(out):
+    with open(os.path.join(out, "result.json")) as f:
+        return json.load(f)
+
+
+def sheet_faces(part, thickness):
+    """Both faces (mid-surface +- t/2) of a result.json part as one inline mesh:
+    vertices #V by 3 (m), triangles fanned from each tab's first corner."""
+    vertices, triangles = [], []
+    for tab in part["tabs"]:
+        n = tab["normal"]
+        for side in (-0.5, 0.5):
+            base = len(vertices)
+            for c in tab["corners"]:
+                vertices.append([c[k] + side * thickness * n[k] for k in range(3)])
+            for k in range(1, len(tab["corners"]) - 1):
+                triangles.append([base, base + k, base + k + 1])
+    return {"name": "part:" + part["load"], "vertices": vertices, "triangles": triangles}
+
+
+def box_mesh(load, below=0.0):
+    """A load's box (centre, size in m, rotation) as an inline mesh of 12
+    triangles, its bottom face lowered by `below` (m, along the box's -z)."""
+    R = load_rotation(load)
+    h = 0.5 * (np.array(load["size"]) + np.array([0.0, 0.0, below]))
+    c = np.array(load["center"]) - R @ np.array([0.0, 0.0, 0.5 * below])
+    vertices = [(c + R @ (h * np.array([sx, sy, sz]))).tolist() for sz in (-1, 1) for sy in (-1, 1) for sx in (-1, 1)]
+    quads = [(0, 2, 3, 1), (4, 5, 7, 6), (0, 1, 5, 4), (2, 6, 7, 3), (0, 4, 6, 2), (1, 3, 7, 5)]
+    triangles = [t for a, b, c, d in quads for t in ([a, b, c], [a, c, d])]
+    return {"name": "box:" + load["name"], "vertices": vertices, "triangles": triangles}
+
+
+def one_load_problem(doc, problem_dir, load, thickness, obstacles, path, base_room=0.0):
+    """`doc` with only `load`, the sheet `thickness` (m), the other loads' boxes
+    and `obstacles` (inline meshes) added: what sheetgen's own run of the load
+    would avoid (every load box and the parts before it). Each other box is
+    lowered by `base_room` (m): the room its own base tab needs under it
+    (docs/gauge_baseline.md "Reading")."""
+    q = copy.deepcopy(doc)
+    for m in q["environment"]["meshes"]:
+        if "file" in m:
+            m["file"] = os.path.join(problem_dir, m["file"])
+    q["environment"]["meshes"] += [box_mesh(other, base_room) for other in doc["loads"] if other["name"] != load["name"]]
+    q["environment"]["meshes"] += obstacles
+    q["loads"] = [load]
+    q.setdefault("material", {})["thickness"] = thickness
+    q["description"] = (f"{doc.get('name', '')}: load {load['name']} alone at {thickness * 1e3:.3f} mm sheet, "
+                        f"right angles, the other parts as obstacles (bench/gauge_baseline.py)")
+    with open(path, "w") as f:
+        json.dump(q, f)
+
+
+def verify(build_sheetgen, out, allow_no_part=False):
+    args = [sys.executable, os.path.join(ROOT, "tests", "python", "verify_result.py"), out, "--sheetgen", build_sheetgen]
+    if allow_no_part:
+        args.append("--allow-no-part")
+    r = subprocess.run(args, capture_output=True, text=True)
+    last = (r.stdout.strip().splitlines() or [""])[-1]
+    return r.returncode == 0, last, [l for l in r.stdout.splitlines() if l.startswith("FAIL")]
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    ap.add_argument("--problem", default=os.path.join(ROOT, "sample_scenes", "avionics_bay", "problem.json"))
+    ap.add_argument("--out", default=os.path.join(ROOT, "build", "gauge_baseline"))
+    ap.add_argument("--free", help="reuse this free-angle output folder of the same problem")
+    ap.add_argument("--sheetgen", default=os.path.join(ROOT, "build", "native", "cli", "sheetgen"))
+    ap.add_argument("--verify", action="store_true", help="check every stand-in part with verify_result.py (CalculiX)")
+    ap.add_argument("--doc", default=os.path.join(ROOT, "docs", "gauge_baseline.md"))
+    args = ap.parse_args()
+    os.makedirs(args.out, exist_ok=True)
+    with open(args.problem) as f:
+        doc = json.load(f)
+    problem_dir = os.path.dirname(os.path.abspath(args.problem))
+    base_t = doc.get("material", {}).get("thickness", 1.6e-3)
+
+    walls = {}
+    free_dir = args.free or os.path.join(args.out, "free")
+    if not args.free:
+        walls["free"] = solve(args.sheetgen, args.problem, free_dir, [])
+    free = {p["load"]: p for p in read_result(free_dir)["parts"]}
+
+    # The expert stand-in, load by load in the problem's order (as sheetgen
+    # solves them): right angles at the problem's sheet, else the first gauge
+    # up that has a part; the parts before it are its obstacles.
+    expert = {}
+    obstacles = []
+    tries = []
+    start = time.monotonic()
+    for li, load in enumerate(doc["loads"]):
+        name = load["name"]
+        for t in [base_t] + [g * INCH for g in GAUGES_IN if g * INCH > base_t + 1e-9]:
+            run_dir = os.path.join(args.out, "expert", f"{li:02d}_{name}_{t / INCH:.3f}in")
+            os.makedirs(run_dir, exist_ok=True)
+            path = os.path.join(run_dir, "problem.json")
+            one_load_problem(doc, problem_dir, load, t, obstacles, path, base_room=base_t)
+            wall = solve(args.sheetgen, path, os.path.join(run_dir, "out"), ["--right-angles"])
+            part = read_result(os.path.join(run_dir, "out"))["parts"][0]
+            tries.append((name, t, part, wall))
+            print(f"{name} at {t / INCH:.3f} in: {part['status']} "
+                  f"{part.get('area_m2', 0) * 1e4:.1f} cm^2 {part.get('reason', '')[:120]} ({wall:.0f} s)", flush=True)
+            if part["status"] == "ok":
+                expert[name] = {"part": part, "thickness": t, "dir": os.path.join(run_dir, "out")}
+                obstacles.append(sheet_faces(part, t))
+                break
+    walls["expert stand-in"] = time.monotonic() - start
+
+    checks = {}
+    if args.verify:
+        for name, e in expert.items():
+            checks[name] = verify(args.sheetgen, e["dir"])
+            print(f"verify {name}: {checks[name][1]}", flush=True)
+
+    # The table.
+    md = ["# The expert stand-in with the next gauge up (avionics bay)", "",
+          f"Made by `bench/gauge_baseline.py` on {time.strftime('%Y-%m-%d')} (2 cores, one solve at a time), "
+          f"problem `{os.path.relpath(args.problem, ROOT)}` at its own settings "
+          f"({doc.get('search', {}).get('chains', 10)} chains x {doc.get('search', {}).get('iterations', 1000)} iterations).", "",
+          "| load | free angles, %.3f in | expert stand-in: right angles | gauge (in) | free vs stand-in, mass |" % (base_t / INCH),
+          "| --- | --- | --- | --- | --- |"]
+    tot = {"free_a": 0.0, "free_m": 0.0, "ex_a": 0.0, "ex_m": 0.0}
+    complete = True
+    for load in doc["loads"]:
+        name = load["name"]
+        f = free.get(name)
+        e = expert.get(name)
+        fcell = ("%.0f cm², %.3f kg, %d bends" % (f["area_m2"] * 1e4, f["mass_kg"], f["bends"])
+                 if f and f["status"] == "ok" else "no part")
+        if e:
+            p = e["part"]
+            ecell = "%.0f cm², %.3f kg, %d bends" % (p["area_m2"] * 1e4, p["mass_kg"], p["bends"])
+            gauge = "%.3f" % (e["thickness"] / INCH)
+        else:
+            ecell, gauge = "no part at any gauge tried", "–"
+            complete = False
+        change = "%+.1f %%" % (100.0 * (f["mass_kg"] / e["part"]["mass_kg"] - 1.0)) if (e and f and f["status"] == "ok") else "–"
+        md.append(f"| {name} | {fcell} | {ecell} | {gauge} | {change} |")
+        if f and f["status"] == "ok":
+            tot["free_a"] += f["area_m2"]
+            tot["free_m"] += f["mass_kg"]
+        if e:
+            tot["ex_a"] += e["part"]["area_m2"]
+            tot["ex_m"] += e["part"]["mass_kg"]
+    md += ["", "| total | free angles | expert stand-in | change |", "| --- | --- | --- | --- |",
+           "| material (m²) | %.4f | %.4f | %+.1f %% |" % (tot["free_a"], tot["ex_a"], 100.0 * (tot["free_a"] / tot["ex_a"] - 1.0)),
+           "| mass (kg) | %.3f | %.3f | %+.1f %% |" % (tot["free_m"], tot["ex_m"], 100.0 * (tot["free_m"] / tot["ex_m"] - 1.0))]
+    if not complete:
+        md += ["", "**Incomplete:** some load has no stand-in part at any gauge tried; the totals leave it out."]
+    md += ["", "Every run of the stand-in (each load alone, the parts before it as obstacles):", ""]
+    for name, t, part, wall in tries:
+        what = ("ok, %.0f cm², C %.4g of %.4g J, MS %.2f" % (part["area_m2"] * 1e4, part["compliance"], part["compliance_limit"],
+                                                            part["margin_of_safety"])
+                if part["status"] == "ok" else part.get("reason", ""))
+        md.append(f"* {name}, {t / INCH:.3f} in ({wall:.0f} s): {what}")
+    if checks:
+        md += ["", "Independent checks of the stand-in's parts (`tests/python/verify_result.py`):", ""]
+        for name, (ok, last, fails) in checks.items():
+            md.append(f"* {name}: {'passed' if ok else 'FAILED'}: `{last}`" + ("".join(f"; `{x}`" for x in fails[:3])))
+    if walls:
+        md += ["", "Wall time: " + ", ".join(f"{k} {v:.0f} s" for k, v in walls.items()) + "."]
+    # A "## Reading" section written by hand below the generated part is kept.
+    reading = ""
+    if os.path.exists(args.doc):
+        old = open(args.doc).read()
+        if "\n## Reading" in old:
+            reading = old[old.index("\n## Reading"):]
+    with open(args.doc, "w") as f:
+        f.write("\n".join(md) + "\n" + reading)
+    print("wrote " + args.doc)
+
+
+if __name__ == "__main__":
+    main()
