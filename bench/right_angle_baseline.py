@@ -24,15 +24,21 @@ ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 SCENES = "shelf,corner,wall_standoff,corner_obstacle,slanted,sharp_angles,boxed_in,bulkhead_hole,maze"
 
 
-def solve(sheetgen, problem, out, extra):
+def run(sheetgen, problem, out, extra, who="right_angle_baseline"):
+    """`sheetgen solve PROBLEM --out OUT --threads 2 EXTRA`: (result.json, wall time s).
+    Exits with the solver's output unless it exited 0 or 2 (a load without a part)."""
     start = time.monotonic()
     p = subprocess.run([sheetgen, "solve", problem, "--out", out, "--threads", "2"] + extra,
                        stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True, stdin=subprocess.DEVNULL)
     wall = time.monotonic() - start
     if p.returncode not in (0, 2):
-        raise SystemExit(f"right_angle_baseline: {problem}: sheetgen exited {p.returncode}:\n{p.stdout[-2000:]}")
+        raise SystemExit(f"{who}: {problem}: sheetgen exited {p.returncode}:\n{p.stdout[-2000:]}")
     with open(os.path.join(out, "result.json")) as f:
-        result = json.load(f)
+        return json.load(f), wall
+
+
+def solve(sheetgen, problem, out, extra):
+    result, wall = run(sheetgen, problem, out, extra)
     part = result["parts"][0]
     return {"ok": part.get("status") == "ok", "area_cm2": part.get("area_m2", 0.0) * 1e4,
             "bends": part.get("bends", 0), "reason": part.get("reason", ""), "wall_s": wall}
