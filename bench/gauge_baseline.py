@@ -145,7 +145,6 @@ def main():
     expert = {}
     obstacles = []
     tries = []
-    start = time.monotonic()
     for li, load in enumerate(doc["loads"]):
         name = load["name"]
         for t in [base_t] + [g * INCH for g in GAUGES_IN if g * INCH > base_t + 1e-9]:
@@ -165,7 +164,7 @@ def main():
                 expert[name] = {"part": part, "thickness": t, "dir": os.path.join(run_dir, "out")}
                 obstacles.append(sheet_faces(part, t))
                 break
-    walls["expert stand-in"] = time.monotonic() - start
+    walls["expert stand-in (its one-load runs)"] = sum(w for _, _, _, w in tries)
 
     checks = {}
     if args.verify:
