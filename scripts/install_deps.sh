@@ -9,6 +9,8 @@ PACKAGES=(
   # core libraries
   libopenvdb-dev libboost-iostreams-dev libtbb-dev libblosc-dev zlib1g-dev
   libembree-dev libeigen3-dev libsuitesparse-dev nlohmann-json3-dev libcli11-dev
+  # exact geometric predicates of the plate mesher (header-only CGAL), the convergence plot (cairo)
+  libcgal-dev libgmp-dev libmpfr-dev libcairo2-dev
   # tests and benchmarks
   libgtest-dev libgmock-dev libbenchmark-dev
   # python module (built for the system Python 3.11 that Debian's Blender runs)
@@ -19,6 +21,8 @@ PACKAGES=(
   python3-gmsh
   # screenshots of the Blender UI (scripts/make_screenshots.py)
   xvfb
+  # function lengths of the C++ code (scripts/function_lengths.py)
+  universal-ctags
   # fuzzing and sanitizers (clang + libFuzzer runtime)
   clang libclang-rt-14-dev
 )
