@@ -1,10 +1,9 @@
 #!/usr/bin/python3
-"""Reads a convergence plot PNG written by sheetgen's own PNG writer with PIL
-(an independent decoder) and checks it: a valid PNG (PIL's verify checks the
-chunk CRCs and the zlib stream), 8-bit RGB, the size written, exactly the
-pixels written (compared with a binary PPM of the same image that this script
-reads without PIL), and every plotted point's colour where its panel's axis
-mapping puts it.
+"""Reads a convergence plot PNG written by sheetgen (drawn and encoded with
+cairo) with PIL, a decoder independent of it, and checks it: a valid PNG (PIL's
+verify checks the chunk CRCs), 8-bit RGB, the size asked for, and every plotted
+point's colour where its panel's axis mapping puts it (the marker covers that
+pixel whole, so the colour is exact despite anti-aliasing).
 
 Usage (exits non-zero on failure):
   /usr/bin/python3 test_report_png.py --writer build/tests/native/sheetgen_report_tests
@@ -25,27 +24,9 @@ from PIL import Image
 def write_sample(writer, out_dir):
     png = os.path.join(out_dir, "convergence.png")
     env = dict(os.environ, SHEETGEN_REPORT_PNG_OUT=png)
-    subprocess.run([writer, "--gtest_filter=ConvergencePlot.WritesSamplePngForPython"], check=True, env=env,
+    subprocess.run([writer, "--gtest_filter=ConvergencePlotSample.WritesSamplePngForPython"], check=True, env=env,
                    stdout=subprocess.DEVNULL)
     return png
-
-
-def read_ppm(path):
-    """Binary P6 with maxval 255 -> (width, height, bytes)."""
-    with open(path, "rb") as f:
-        data = f.read()
-    fields, at = [], 0
-    while len(fields) < 4:
-        while data[at:at + 1].isspace():
-            at += 1
-        start = at
-        while not data[at:at + 1].isspace():
-            at += 1
-        fields.append(data[start:at])
-    at += 1  # the single whitespace after maxval
-    assert fields[0] == b"P6" and fields[3] == b"255", fields
-    w, h = int(fields[1]), int(fields[2])
-    return w, h, data[at:at + w * h * 3]
 
 
 def check_format(path):
@@ -63,17 +44,13 @@ def check_format(path):
 
 def check_sample(png):
     bad = check_format(png)
-    w, h, ppm = read_ppm(png + ".ppm")
+    with open(png + ".json") as f:
+        layout = json.load(f)
     with Image.open(png) as im:
-        if im.size != (w, h):
-            bad.append(f"size {im.size}, want {(w, h)}")
+        want = (layout["width_px"], layout["height_px"])
+        if im.size != want:
+            bad.append(f"size {im.size}, want {want}")
             return bad
-        pixels = im.convert("RGB").tobytes()
-        if pixels != ppm:
-            diff = sum(1 for i in range(0, len(ppm), 3) if pixels[i:i + 3] != ppm[i:i + 3])
-            bad.append(f"{diff} of {w * h} pixels differ from the ones written")
-        with open(png + ".json") as f:
-            layout = json.load(f)
         for k, p in enumerate(layout["panels"]):
             for x, y in p["points"]:
                 px = p["left_px"] + (x - p["x_min"]) / (p["x_max"] - p["x_min"]) * (p["right_px"] - p["left_px"])

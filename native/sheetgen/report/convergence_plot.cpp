@@ -1,384 +1,510 @@
 #include "sheetgen/report/convergence_plot.hpp"
 
+#include <cairo.h>
+#include <unistd.h>
+
 #include <algorithm>
+#include <atomic>
+#include <cerrno>
 #include <cmath>
 #include <cstdio>
+#include <cstring>
+#include <filesystem>
+#include <memory>
 #include <stdexcept>
 
-#include "sheetgen/report/raster_canvas.hpp"
+#include "sheetgen/report/plot_axis.hpp"
 
 namespace sheetgen {
 namespace {
 
-constexpr Rgb kWhite{255, 255, 255};
-constexpr Rgb kInk{30, 30, 30};        // text, frames
-constexpr Rgb kTickInk{70, 70, 70};
-constexpr Rgb kGrid{228, 228, 228};
+namespace fs = std::filesystem;
+using C = ConvergenceColours;
 
-struct Axis {
-  double min = 0, max = 1, step = 1;
-  std::vector<double> ticks;
-  int decimals = 0;
+constexpr ConvergenceColour kWhite{255, 255, 255};
+constexpr ConvergenceColour kInk{30, 30, 30};      // text, frames
+constexpr ConvergenceColour kTickInk{70, 70, 70};  // tick marks, the subtitle
+constexpr double kGridAlpha = 0.1;                  // grid lines: black at 10 %, seen on white and on the shade alike
+constexpr double kMargin = 16;      // px around the figure
+constexpr double kTickLength = 7;   // px
+constexpr double kTickGap = 5;      // px between a tick mark and its label
+constexpr double kDash[] = {12, 8};  // px on, px off: the limit lines
+const double kNaN = std::numeric_limits<double>::quiet_NaN();
+
+// What one panel shows.
+struct PanelSpec {
+  std::string y_label;
+  ConvergenceColour colour;
+  std::vector<double> values;  // per point, NaN where nothing is plotted
+  double reference = kNaN;     // the limit, dashed, when finite
+  std::string reference_label;
+  bool feasible_above = false;  // the feasible side of the reference: above (MS) or below (compliance)
+  std::string unit_suffix;      // after the last value, e.g. " J"
+  bool from_zero = true;        // the axis starts at 0: a quantity that cannot be negative
 };
 
-// 1, 2 or 5 times a power of ten, near span / target.
-double nice_step(double span, int target) {
-  const double raw = span / std::max(target, 1);
-  if (!(raw > 0) || !std::isfinite(raw)) return 1.0;
-  const double mag = std::pow(10.0, std::floor(std::log10(raw)));
-  const double norm = raw / mag;
-  return (norm < 1.5 ? 1.0 : norm < 3.0 ? 2.0 : norm < 7.0 ? 5.0 : 10.0) * mag;
-}
+// The figure in px: the panels, their axes and the text rows around them.
+struct Figure {
+  ConvergencePlotLayout layout;
+  std::vector<PlotAxis> y_axes;  // one per panel
+  PlotAxis x_axis;
+  double subtitle_top = 0;  // px, top of the capitals of each text row
+  double x_label_top = 0;
+  double legend_top = 0;
+};
 
-int decimals_for(double step) { return std::max(0, static_cast<int>(std::ceil(-std::log10(step) - 1e-9))); }
+struct Box {  // px, x0 <= x < x1, y0 <= y < y1
+  double x0, y0, x1, y1;
+  bool overlaps(const Box& o) const { return x0 < o.x1 && o.x0 < x1 && y0 < o.y1 && o.y0 < y1; }
+};
 
-std::string format_tick(double v, const Axis& a) {
-  if (std::abs(v) < a.step * 1e-6) v = 0;  // no "-0.0"
+// Three significant digits, no exponent, no trailing zeros: "1226", "0.176", "0.05".
+std::string format_value(double v) {
   char buf[64];
-  std::snprintf(buf, sizeof buf, "%.*f", a.decimals, v);
-  return buf;
-}
-
-std::string format_value(double v, int significant) {
-  char buf[64];
-  std::snprintf(buf, sizeof buf, "%.*g", significant, v);
-  return buf;
-}
-
-void fill_ticks(Axis& a) {
-  a.decimals = decimals_for(a.step);
-  a.ticks.clear();
-  const double first = std::ceil(a.min / a.step - 1e-9) * a.step;
-  for (double t = first; t <= a.max + a.step * 1e-9; t += a.step) a.ticks.push_back(t);
-}
-
-// Values plus reference lines (limits, zero) padded and rounded out to whole ticks.
-Axis value_axis(std::vector<double> values, bool non_negative, int target) {
-  Axis a;
-  if (values.empty()) values = {0.0, 1.0};
-  double lo = *std::min_element(values.begin(), values.end());
-  double hi = *std::max_element(values.begin(), values.end());
-  if (hi - lo <= 1e-12 * std::max(1.0, std::abs(hi))) {
-    const double pad = hi != 0 ? std::abs(hi) * 0.1 : 1.0;  // one value: +-10 %; only zero: +-1
-    lo -= pad;
-    hi += pad;
+  if (v == 0 || !std::isfinite(v)) {
+    std::snprintf(buf, sizeof buf, "%g", v);
+    return buf;
   }
-  const double span = hi - lo;
-  hi += 0.06 * span;  // keeps the highest point off the frame
-  if (!(non_negative && lo >= 0 && lo <= 0.25 * span)) lo -= 0.06 * span;
-  if (non_negative) lo = std::max(lo, 0.0);
-  a.step = nice_step(hi - lo, target);
-  a.min = std::floor(lo / a.step + 1e-9) * a.step;
-  a.max = std::ceil(hi / a.step - 1e-9) * a.step;
-  fill_ticks(a);
-  return a;
+  const int decimals = std::clamp(2 - static_cast<int>(std::floor(std::log10(std::abs(v)))), 0, 9);
+  std::snprintf(buf, sizeof buf, "%.*f", decimals, v);
+  std::string s = buf;
+  if (decimals > 0) {
+    s.erase(s.find_last_not_of('0') + 1);
+    if (s.back() == '.') s.pop_back();
+  }
+  return s;
 }
 
-Axis x_axis_for(const ConvergenceHistory& h, const ConvergencePlotOptions& o) {
-  Axis a;
-  if (o.x_axis == ConvergenceXAxis::Iteration) {
-    int lo = 1, hi = 1;
-    if (!h.points.empty()) {
-      lo = hi = h.points.front().iteration;
-      for (const auto& p : h.points) {
-        lo = std::min(lo, p.iteration);
-        hi = std::max(hi, p.iteration);
-      }
-    }
-    a.min = lo - 0.5;  // half a level either side, so the end points sit inside the frame
-    a.max = hi + 0.5;
-    a.step = std::max(1.0, std::round(nice_step(a.max - a.min, o.target_ticks)));
-    fill_ticks(a);
-    return a;
+void check_option(bool ok, const std::string& field, double value, const std::string& range) {
+  if (!ok) {
+    char buf[64];
+    std::snprintf(buf, sizeof buf, "%g", value);
+    throw std::invalid_argument("ConvergenceOptions::" + field + " " + buf + " is not in " + range);
   }
-  int hi = 0;
-  for (const auto& p : h.points) hi = std::max(hi, p.evaluated);
-  a.min = 0;
-  a.step = nice_step(std::max(hi, 1) * 1.04, o.target_ticks);
-  a.step = std::max(1.0, a.step);
-  a.max = std::ceil(std::max(hi, 1) * 1.04 / a.step) * a.step;
-  fill_ticks(a);
-  return a;
+}
+
+void check_options(const ConvergenceOptions& o) {
+  check_option(o.width_px >= 320 && o.width_px <= 8192, "width_px", o.width_px, "320..8192");
+  check_option(o.height_px >= 360 && o.height_px <= 8192, "height_px", o.height_px, "360..8192");
+  check_option(o.font_size_px >= 6 && o.font_size_px <= 72, "font_size_px", o.font_size_px, "6..72");
+  check_option(o.line_width_px > 0 && o.line_width_px <= 50, "line_width_px", o.line_width_px, "(0, 50]");
+  check_option(o.marker_radius_px >= 0 && o.marker_radius_px <= 50, "marker_radius_px", o.marker_radius_px, "0..50");
+  check_option(o.target_ticks >= 2 && o.target_ticks <= 20, "target_ticks", o.target_ticks, "2..20");
+}
+
+std::vector<PanelSpec> panel_specs(const ConvergenceHistory& h) {
+  std::vector<PanelSpec> s(3);
+  s[0].y_label = "best flat area (cm\u00B2)";
+  s[0].colour = C::area;
+  s[0].unit_suffix = " cm\u00B2";
+  s[1].y_label = "compliance (J)";
+  s[1].colour = C::compliance;
+  s[1].unit_suffix = " J";
+  s[1].reference = h.compliance_limit_J;
+  s[1].reference_label = "limit " + format_value(h.compliance_limit_J) + " J";
+  s[2].y_label = "margin of safety (-)";
+  s[2].colour = C::margin;
+  s[2].reference = h.min_margin_of_safety;
+  s[2].reference_label = "required MS " + format_value(h.min_margin_of_safety);
+  s[2].feasible_above = true;
+  s[2].from_zero = false;
+  for (const ConvergencePoint& p : h.points) {
+    const double v[3] = {p.best_area_m2 * 1e4, p.compliance_J, p.margin_of_safety};
+    for (int k = 0; k < 3; ++k) s[k].values.push_back(p.found && std::isfinite(v[k]) ? v[k] : kNaN);
+  }
+  return s;
 }
 
 double x_value(const ConvergencePoint& p, ConvergenceXAxis axis) {
   return axis == ConvergenceXAxis::Iteration ? p.iteration : p.evaluated;
 }
 
-struct Box {  // px, x0 <= x < x1, y0 <= y < y1
-  int x0, y0, x1, y1;
-  bool overlaps(const Box& o) const { return x0 < o.x1 && o.x0 < x1 && y0 < o.y1 && o.y0 < y1; }
-};
-
-struct PanelSpec {
-  std::string y_label;
-  Rgb colour;
-  std::vector<double> values;  // per point, NaN where not plotted
-  double reference = std::numeric_limits<double>::quiet_NaN();
-  std::string reference_label;
-  std::string unit_suffix;     // after the last value, e.g. " J"
-  bool non_negative = true;
-};
-
-void check_option(bool ok, const std::string& field, double value, const std::string& range) {
-  if (!ok)
-    throw std::invalid_argument("ConvergencePlotOptions::" + field + " " + format_value(value, 10) + " is not in " + range);
+PlotAxis x_axis_for(const ConvergenceHistory& h, const ConvergenceOptions& o) {
+  if (o.x_axis == ConvergenceXAxis::CandidatesEvaluated) {
+    int largest = 0;
+    for (const auto& p : h.points) largest = std::max(largest, p.evaluated);
+    return count_axis(largest, o.target_ticks);
+  }
+  if (h.points.empty()) return level_axis(1, 1, o.target_ticks);
+  const auto [lo, hi] = std::minmax_element(h.points.begin(), h.points.end(),
+                                            [](const auto& a, const auto& b) { return a.iteration < b.iteration; });
+  return level_axis(lo->iteration, hi->iteration, o.target_ticks);
 }
 
-// Draws text, shrinking the scale until it fits max_width_px (down to 1).
-void fitted_text(RasterCanvas& c, int x, int y, const std::string& s, Rgb colour, TextStyle style, int max_width_px) {
-  while (style.scale > 1 && RasterCanvas::text_width_px(s, style.scale) > max_width_px) --style.scale;
-  c.text(x, y, s, colour, style);
+double px_x(const ConvergencePanel& p, double x) {
+  return p.left_px + (x - p.x_min) / (p.x_max - p.x_min) * (p.right_px - p.left_px);
+}
+double px_y(const ConvergencePanel& p, double y) {
+  return p.bottom_px - (y - p.y_min) / (p.y_max - p.y_min) * (p.bottom_px - p.top_px);
+}
+
+// ---- cairo: text, lines, markers ---------------------------------------------
+
+void set_colour(cairo_t* cr, ConvergenceColour c) { cairo_set_source_rgb(cr, c.r / 255.0, c.g / 255.0, c.b / 255.0); }
+
+double text_width(cairo_t* cr, const std::string& s) {
+  cairo_text_extents_t e;
+  cairo_text_extents(cr, s.c_str(), &e);
+  return e.x_advance;
+}
+
+double cap_height(cairo_t* cr) {
+  cairo_text_extents_t e;
+  cairo_text_extents(cr, "H", &e);
+  return e.height;
+}
+
+// Sets the font to size_px, or smaller so that s fits max_width_px.
+void set_font_fitting(cairo_t* cr, const std::string& s, double size_px, double max_width_px) {
+  cairo_set_font_size(cr, size_px);
+  const double w = text_width(cr, s);
+  if (w > max_width_px) cairo_set_font_size(cr, size_px * max_width_px / w);
+}
+
+// Draws s in the current font with the point (ax, ay) of its box at (x, y):
+// ax 0 / 0.5 / 1 is the left / centre / right of the text, ay 0 / 0.5 / 1 the
+// top / middle / foot of a capital.
+void draw_text(cairo_t* cr, double x, double y, const std::string& s, double ax, double ay, ConvergenceColour c) {
+  cairo_move_to(cr, x - ax * text_width(cr, s), y + (1 - ay) * cap_height(cr));
+  set_colour(cr, c);
+  cairo_show_text(cr, s.c_str());
+}
+
+void draw_line(cairo_t* cr, double x0, double y0, double x1, double y1, ConvergenceColour c, double width_px) {
+  cairo_move_to(cr, x0, y0);
+  cairo_line_to(cr, x1, y1);
+  set_colour(cr, c);
+  cairo_set_line_width(cr, width_px);
+  cairo_stroke(cr);
+}
+
+void draw_grid_line(cairo_t* cr, double x0, double y0, double x1, double y1) {
+  cairo_move_to(cr, x0, y0);
+  cairo_line_to(cr, x1, y1);
+  cairo_set_source_rgba(cr, 0, 0, 0, kGridAlpha);
+  cairo_set_line_width(cr, 1);
+  cairo_stroke(cr);
+}
+
+void draw_cross(cairo_t* cr, double x, double y, double half_px, ConvergenceColour c) {
+  draw_line(cr, x - half_px, y - half_px, x + half_px, y + half_px, c, 2);
+  draw_line(cr, x - half_px, y + half_px, x + half_px, y - half_px, c, 2);
+}
+
+void draw_dashed(cairo_t* cr, double x0, double x1, double y, ConvergenceColour c) {
+  cairo_set_dash(cr, kDash, 2, 0);
+  draw_line(cr, x0, y, x1, y, c, 2);
+  cairo_set_dash(cr, nullptr, 0, 0);
+}
+
+// ---- layout ------------------------------------------------------------------
+
+std::vector<PlotAxis> y_axes_for(const std::vector<PanelSpec>& specs, const ConvergenceOptions& o) {
+  std::vector<PlotAxis> axes;
+  for (const PanelSpec& s : specs) {
+    std::vector<double> range = s.values;  // NaNs are ignored by value_axis
+    range.push_back(s.reference);
+    const bool any = std::any_of(range.begin(), range.end(), [](double v) { return std::isfinite(v); });
+    if (s.from_zero && any) range.push_back(0.0);
+    axes.push_back(value_axis(range, s.from_zero, o.target_ticks));
+  }
+  return axes;
+}
+
+// Text rows from the top: title, subtitle, the three panels; under them the
+// x tick labels, the x label and the legend. The y label and tick labels sit
+// left of the panels.
+Figure lay_out(cairo_t* cr, const ConvergenceHistory& h, const std::vector<PanelSpec>& specs,
+               const ConvergenceOptions& o) {
+  Figure f;
+  f.y_axes = y_axes_for(specs, o);
+  f.x_axis = x_axis_for(h, o);
+  const double fs = o.font_size_px;
+  cairo_set_font_size(cr, fs);
+  const double cap = cap_height(cr);
+  double tick_label_w = 0;
+  for (const PlotAxis& a : f.y_axes)
+    for (double t : a.ticks) tick_label_w = std::max(tick_label_w, text_width(cr, a.label(t)));
+
+  f.subtitle_top = kMargin + 1.5 * cap + 0.8 * fs;
+  const double top = std::round(f.subtitle_top + cap + 1.4 * fs);
+  const double left = std::round(kMargin + 1.3 * fs + 10 + tick_label_w + kTickLength + kTickGap);
+  const double right = o.width_px - 2 * kMargin;
+  const double below = kTickLength + kTickGap + 3 * cap + 2 * 0.9 * fs + 0.5 * fs;  // tick labels, x label, legend
+  const double bottom = o.height_px - kMargin - below;
+  const double gap = std::max(24.0, 2 * fs);  // one panel's lowest tick label clear of the next one's highest
+  const double panel_h = std::floor((bottom - top - 2 * gap) / 3);
+  if (panel_h < 40 || right - left < 80)
+    throw std::invalid_argument("ConvergenceOptions: " + std::to_string(o.width_px) + " x " +
+                                std::to_string(o.height_px) + " px leaves no room for the panels at font_size_px " +
+                                format_value(fs));
+  f.layout.width_px = o.width_px;
+  f.layout.height_px = o.height_px;
+  for (int k = 0; k < 3; ++k) {
+    ConvergencePanel p;
+    p.y_label = specs[k].y_label;
+    p.left_px = left;
+    p.right_px = right;
+    p.top_px = top + k * (panel_h + gap);
+    p.bottom_px = p.top_px + panel_h;
+    p.x_min = f.x_axis.min;
+    p.x_max = f.x_axis.max;
+    p.y_min = f.y_axes[k].min;
+    p.y_max = f.y_axes[k].max;
+    f.layout.panels.push_back(p);
+  }
+  f.x_label_top = bottom + kTickLength + kTickGap + cap + 0.9 * fs;
+  f.legend_top = f.x_label_top + cap + 0.9 * fs;
+  return f;
+}
+
+// ---- drawing -----------------------------------------------------------------
+
+std::string subtitle(const ConvergenceHistory& h) {
+  const auto& pts = h.points;
+  if (pts.empty()) return "no iterations recorded";
+  const int evaluated = pts.back().evaluated;
+  const auto first = std::find_if(pts.begin(), pts.end(), [](const ConvergencePoint& p) { return p.found; });
+  if (first == pts.end())
+    return "no valid part in " + std::to_string(pts.size()) + " iterations (" + std::to_string(evaluated) +
+           " candidates)";
+  return "first valid part: iteration " + std::to_string(first->iteration) + ", " + std::to_string(first->evaluated) +
+         " of " + std::to_string(evaluated) + " candidates";
+}
+
+void draw_title(cairo_t* cr, const ConvergenceHistory& h, const Figure& f, const ConvergenceOptions& o) {
+  const double centre = o.width_px / 2.0, room = o.width_px - 2 * kMargin;
+  const std::string title = "Convergence: " + h.load;
+  set_font_fitting(cr, title, 1.5 * o.font_size_px, room);
+  draw_text(cr, centre, kMargin, title, 0.5, 0, kInk);
+  const std::string sub = subtitle(h);
+  set_font_fitting(cr, sub, o.font_size_px, room);
+  draw_text(cr, centre, f.subtitle_top, sub, 0.5, 0, kTickInk);
+  cairo_set_font_size(cr, o.font_size_px);
+}
+
+// The feasible side of the limit, shaded under everything else.
+void draw_feasible_side(cairo_t* cr, const ConvergencePanel& p, const PanelSpec& s) {
+  if (!std::isfinite(s.reference)) return;
+  const double y = px_y(p, s.reference);
+  if (s.feasible_above)
+    cairo_rectangle(cr, p.left_px, p.top_px, p.right_px - p.left_px, y - p.top_px);
+  else
+    cairo_rectangle(cr, p.left_px, y, p.right_px - p.left_px, p.bottom_px - y);
+  set_colour(cr, C::feasible);
+  cairo_fill(cr);
+}
+
+// Grid lines on the ticks, tick marks, tick labels (x only on the bottom panel), the frame.
+void draw_axes(cairo_t* cr, const ConvergencePanel& p, const PlotAxis& ya, const PlotAxis& xa, bool x_labels) {
+  for (double t : ya.ticks) {
+    const double y = std::floor(px_y(p, t)) + 0.5;  // 1 px lines on the pixel grid
+    draw_grid_line(cr, p.left_px, y, p.right_px, y);
+    draw_line(cr, p.left_px - kTickLength, y, p.left_px, y, kTickInk, 2);
+    draw_text(cr, p.left_px - kTickLength - kTickGap, y, ya.label(t), 1, 0.5, kInk);
+  }
+  for (double t : xa.ticks) {
+    const double x = std::floor(px_x(p, t)) + 0.5;
+    draw_grid_line(cr, x, p.top_px, x, p.bottom_px);
+    draw_line(cr, x, p.bottom_px, x, p.bottom_px + kTickLength, kTickInk, 2);
+    if (x_labels) draw_text(cr, x, p.bottom_px + kTickLength + kTickGap, xa.label(t), 0.5, 0, kInk);
+  }
+  cairo_rectangle(cr, p.left_px + 0.5, p.top_px + 0.5, p.right_px - p.left_px - 1, p.bottom_px - p.top_px - 1);
+  set_colour(cr, kInk);
+  cairo_set_line_width(cr, 1);
+  cairo_stroke(cr);
+}
+
+// The y label, reading bottom to top, centred on the panel at the figure's left edge.
+void draw_y_label(cairo_t* cr, const ConvergencePanel& p, const ConvergenceOptions& o) {
+  cairo_save(cr);
+  set_font_fitting(cr, p.y_label, o.font_size_px, p.bottom_px - p.top_px);
+  cairo_translate(cr, kMargin, (p.top_px + p.bottom_px) / 2);
+  cairo_rotate(cr, -M_PI / 2);  // the text's top now faces left
+  draw_text(cr, 0, 0, p.y_label, 0.5, 0, kInk);
+  cairo_restore(cr);
+}
+
+// The limit, dashed, with its label on a white box at the right: above the
+// line when there is room in the panel, else below. Returns what the
+// last-value label must not cover.
+std::vector<Box> draw_reference(cairo_t* cr, const ConvergencePanel& p, const PanelSpec& s) {
+  if (!std::isfinite(s.reference)) return {};
+  const double y = px_y(p, s.reference);
+  draw_dashed(cr, p.left_px + 1, p.right_px - 1, y, C::limit);
+  const double cap = cap_height(cr), w = text_width(cr, s.reference_label);
+  const double label_top = y - cap - 7 > p.top_px + 3 ? y - cap - 7 : y + 7;
+  const Box box{p.right_px - 10 - w - 4, label_top - 4, p.right_px - 6, label_top + cap + 4};
+  cairo_rectangle(cr, box.x0, box.y0, box.x1 - box.x0, box.y1 - box.y0);
+  set_colour(cr, kWhite);
+  cairo_fill(cr);
+  draw_text(cr, p.right_px - 10, label_top, s.reference_label, 1, 0, C::limit);
+  return {box, Box{p.left_px, y - 3, p.right_px, y + 4}};
+}
+
+// Segments between consecutive plotted points, then the markers on top; a
+// grey cross on the bottom edge for a point without a value. Counts both.
+void draw_curve(cairo_t* cr, ConvergencePanel& p, const PanelSpec& s, const std::vector<ConvergencePoint>& pts,
+                const ConvergenceOptions& o) {
+  bool open = false;
+  for (size_t i = 0; i < pts.size(); ++i) {
+    if (!std::isfinite(s.values[i])) continue;
+    const double x = px_x(p, x_value(pts[i], o.x_axis)), y = px_y(p, s.values[i]);
+    if (open)
+      cairo_line_to(cr, x, y);
+    else
+      cairo_move_to(cr, x, y);
+    open = true;
+  }
+  set_colour(cr, s.colour);
+  cairo_set_line_width(cr, o.line_width_px);
+  cairo_set_line_join(cr, CAIRO_LINE_JOIN_ROUND);
+  cairo_stroke(cr);
+  const double cross = std::max(o.marker_radius_px, 4.0);
+  for (size_t i = 0; i < pts.size(); ++i) {
+    const double x = px_x(p, x_value(pts[i], o.x_axis));
+    if (std::isfinite(s.values[i])) {
+      cairo_new_sub_path(cr);
+      cairo_arc(cr, x, px_y(p, s.values[i]), o.marker_radius_px, 0, 2 * M_PI);
+      set_colour(cr, s.colour);
+      cairo_fill(cr);
+      ++p.plotted_points;
+    } else {
+      draw_cross(cr, x, p.bottom_px - cross - 4, cross, C::not_found);
+      ++p.not_found_points;
+    }
+  }
+}
+
+// The last value in numbers, since a curve far below its limit is hard to read
+// off: above the point, else below, the first place inside the panel clear of
+// the limit and its label.
+void draw_last_value(cairo_t* cr, const ConvergencePanel& p, const PanelSpec& s,
+                     const std::vector<ConvergencePoint>& pts, const std::vector<Box>& keep_out,
+                     const ConvergenceOptions& o) {
+  int last = -1;
+  for (size_t i = 0; i < pts.size(); ++i)
+    if (std::isfinite(s.values[i])) last = static_cast<int>(i);
+  if (last < 0) return;
+  const double x = px_x(p, x_value(pts[last], o.x_axis)), y = px_y(p, s.values[last]);
+  const std::string label = format_value(s.values[last]) + s.unit_suffix;
+  const double cap = cap_height(cr), w = text_width(cr, label), r = o.marker_radius_px;
+  double top = y - r - 8 - cap;
+  for (double candidate : {y - r - 8 - cap, y + r + 8}) {
+    const Box b{x - w, candidate - 2, x, candidate + cap + 2};
+    const bool inside = b.y0 > p.top_px + 2 && b.y1 < p.bottom_px - 2;
+    if (inside && std::none_of(keep_out.begin(), keep_out.end(), [&](const Box& k) { return k.overlaps(b); })) {
+      top = candidate;
+      break;
+    }
+  }
+  draw_text(cr, x, top, label, 1, 0, s.colour);
+}
+
+void draw_panel(cairo_t* cr, Figure& f, int k, const PanelSpec& s, const std::vector<ConvergencePoint>& pts,
+                const ConvergenceOptions& o) {
+  ConvergencePanel& p = f.layout.panels[k];
+  draw_feasible_side(cr, p, s);
+  draw_axes(cr, p, f.y_axes[k], f.x_axis, k == 2);
+  draw_y_label(cr, p, o);
+  const std::vector<Box> keep_out = draw_reference(cr, p, s);
+  draw_curve(cr, p, s, pts, o);
+  draw_last_value(cr, p, s, pts, keep_out, o);
+  if (p.plotted_points == 0)  // a third of the way down: clear of a limit line at mid-height
+    draw_text(cr, (p.left_px + p.right_px) / 2, p.top_px + (p.bottom_px - p.top_px) / 3, "no valid part found", 0.5,
+              0.5, C::not_found);
+}
+
+enum class LegendKey { Limit, Feasible, NotFound };
+
+// A legend entry's sample, sample_px wide, centred on y.
+void draw_legend_sample(cairo_t* cr, LegendKey key, double x, double y, double sample_px, const ConvergenceOptions& o) {
+  if (key == LegendKey::Limit) draw_dashed(cr, x, x + sample_px, y, C::limit);
+  if (key == LegendKey::NotFound) draw_cross(cr, x + sample_px / 2, y, std::max(o.marker_radius_px, 4.0), C::not_found);
+  if (key == LegendKey::Feasible) {
+    const double h = 1.4 * cap_height(cr);
+    cairo_rectangle(cr, x, y - h / 2, sample_px, h);
+    set_colour(cr, C::feasible);
+    cairo_fill(cr);
+  }
+}
+
+// Under the bottom panel: the x label, then one legend row for the limit
+// lines, the feasible side and the grey crosses (those drawn at all), centred.
+void draw_footer(cairo_t* cr, const Figure& f, const std::vector<PanelSpec>& specs, const ConvergenceOptions& o) {
+  const ConvergencePanel& bottom = f.layout.panels.back();
+  const double centre = (bottom.left_px + bottom.right_px) / 2;
+  draw_text(cr, centre, f.x_label_top,
+            o.x_axis == ConvergenceXAxis::Iteration ? "iteration (beam-search level)" : "candidates evaluated", 0.5, 0,
+            kInk);
+  std::vector<std::pair<LegendKey, std::string>> items;
+  if (std::any_of(specs.begin(), specs.end(), [](const PanelSpec& s) { return std::isfinite(s.reference); })) {
+    items.push_back({LegendKey::Limit, "limit"});
+    items.push_back({LegendKey::Feasible, "feasible side"});
+  }
+  if (std::any_of(f.layout.panels.begin(), f.layout.panels.end(),
+                  [](const ConvergencePanel& p) { return p.not_found_points > 0; }))
+    items.push_back({LegendKey::NotFound, "no valid part yet"});
+  const double sample = 28, pad = 8, spacing = 28;  // px
+  double width = -spacing;
+  for (const auto& item : items) width += sample + pad + text_width(cr, item.second) + spacing;
+  double x = centre - width / 2;
+  const double y = f.legend_top + cap_height(cr) / 2;
+  for (const auto& [key, text] : items) {
+    draw_legend_sample(cr, key, x, y, sample, o);
+    draw_text(cr, x + sample + pad, y, text, 0, 0.5, kInk);
+    x += sample + pad + text_width(cr, text) + spacing;
+  }
+}
+
+// ---- writing -----------------------------------------------------------------
+
+[[noreturn]] void cannot_write(const std::string& path, const std::string& why) {
+  throw std::runtime_error(path + ": cannot write the convergence plot (" + why + ")");
+}
+
+// Through a temporary file in the same folder, renamed over path on success.
+void write_png_atomically(cairo_surface_t* surface, const std::string& path) {
+  static std::atomic<unsigned> counter{0};
+  const std::string tmp = path + ".tmp-" + std::to_string(::getpid()) + "-" + std::to_string(counter++);
+  std::error_code ec;
+  errno = 0;
+  const cairo_status_t status = cairo_surface_write_to_png(surface, tmp.c_str());
+  if (status != CAIRO_STATUS_SUCCESS) {
+    const std::string why = errno ? std::strerror(errno) : cairo_status_to_string(status);
+    fs::remove(fs::u8path(tmp), ec);
+    cannot_write(path, why);
+  }
+  fs::rename(fs::u8path(tmp), fs::u8path(path), ec);
+  if (ec) {
+    const std::string why = ec.message();
+    fs::remove(fs::u8path(tmp), ec);
+    cannot_write(path, why);
+  }
 }
 
 }  // namespace
 
-ConvergencePlot draw_convergence_plot(const ConvergenceHistory& history, const ConvergencePlotOptions& o) {
-  check_option(o.width_px >= 320 && o.width_px <= 8192, "width_px", o.width_px, "320..8192");
-  check_option(o.height_px >= 360 && o.height_px <= 8192, "height_px", o.height_px, "360..8192");
-  check_option(o.font_scale >= 1 && o.font_scale <= 8, "font_scale", o.font_scale, "1..8");
-  check_option(o.title_font_scale >= 1 && o.title_font_scale <= 8, "title_font_scale", o.title_font_scale, "1..8");
-  check_option(o.target_ticks >= 2 && o.target_ticks <= 20, "target_ticks", o.target_ticks, "2..20");
-  check_option(o.line_thickness_px > 0 && o.line_thickness_px <= 50, "line_thickness_px", o.line_thickness_px, "(0, 50]");
-  check_option(o.marker_radius_px >= 0 && o.marker_radius_px <= 50, "marker_radius_px", o.marker_radius_px, "0..50");
-
-  const auto& pts = history.points;
-  const auto plotted = [](const ConvergencePoint& p, double v) { return p.found && std::isfinite(v); };
-  const double nan = std::numeric_limits<double>::quiet_NaN();
-
-  std::vector<PanelSpec> specs(3);
-  specs[0].y_label = "best flat area (cm\u00B2)";
-  specs[0].colour = ConvergencePlotColours::area;
-  specs[0].unit_suffix = " cm\u00B2";
-  specs[1].y_label = "compliance (J)";
-  specs[1].colour = ConvergencePlotColours::compliance;
-  specs[1].unit_suffix = " J";
-  specs[1].reference = history.compliance_limit_J;
-  specs[1].reference_label = "limit " + format_value(history.compliance_limit_J, 3) + " J";
-  specs[2].y_label = "margin of safety (-)";
-  specs[2].colour = ConvergencePlotColours::margin;
-  specs[2].reference = history.min_margin_of_safety;
-  specs[2].reference_label = "required MS " + format_value(history.min_margin_of_safety, 3);
-  specs[2].non_negative = false;
-  for (const auto& p : pts) {
-    const double area_cm2 = p.best_area_m2 * 1e4;
-    specs[0].values.push_back(plotted(p, area_cm2) ? area_cm2 : nan);
-    specs[1].values.push_back(plotted(p, p.compliance_J) ? p.compliance_J : nan);
-    specs[2].values.push_back(plotted(p, p.margin_of_safety) ? p.margin_of_safety : nan);
-  }
-
-  std::vector<Axis> y_axes;
-  for (const auto& s : specs) {
-    std::vector<double> range;
-    for (double v : s.values)
-      if (std::isfinite(v)) range.push_back(v);
-    if (std::isfinite(s.reference)) range.push_back(s.reference);
-    if (s.non_negative && !range.empty()) range.push_back(0.0);
-    y_axes.push_back(value_axis(range, s.non_negative, o.target_ticks));
-  }
-  const Axis x_axis = x_axis_for(history, o);
-
-  // Layout, px.
-  const int fs = o.font_scale;
-  const int char_h = RasterCanvas::text_height_px(fs);
-  const int margin = 16;
-  const int title_h = RasterCanvas::text_height_px(o.title_font_scale);
-  const int subtitle_top = margin + title_h + 10;
-  const int panels_top = subtitle_top + char_h + 22;
-  int tick_label_w = 0;
-  for (const Axis& a : y_axes)
-    for (double t : a.ticks) tick_label_w = std::max(tick_label_w, RasterCanvas::text_width_px(format_tick(t, a), fs));
-  const int left = margin + char_h + 14 + tick_label_w + 12;
-  const int right = o.width_px - 2 * margin;
-  // Under the panels: tick labels, the x label, the legend line.
-  const int panels_bottom = o.height_px - (margin + 3 * char_h + 34);
-  const int gap = std::max(24, 2 * char_h);  // keeps one panel's lowest tick label clear of the next one's highest
-  const int panel_h = (panels_bottom - panels_top - 2 * gap) / 3;
-  if (panel_h < 40 || right - left < 80)
-    throw std::invalid_argument("ConvergencePlotOptions: " + std::to_string(o.width_px) + " x " +
-                                std::to_string(o.height_px) + " px leaves no room for the panels at font_scale " +
-                                std::to_string(fs));
-
-  RasterCanvas canvas(o.width_px, o.height_px, kWhite);
-  ConvergencePlot plot;
-  {
-    TextStyle title;
-    title.scale = o.title_font_scale;
-    title.h_align = HAlign::Center;
-    fitted_text(canvas, o.width_px / 2, margin, "Convergence: " + history.load, kInk, title, o.width_px - 2 * margin);
-    std::string subtitle;
-    const auto first = std::find_if(pts.begin(), pts.end(), [](const ConvergencePoint& p) { return p.found; });
-    const int evaluated = pts.empty() ? 0 : pts.back().evaluated;
-    if (pts.empty())
-      subtitle = "no iterations recorded";
-    else if (first == pts.end())
-      subtitle = "no valid part in " + std::to_string(pts.size()) + " iterations (" + std::to_string(evaluated) +
-                 " candidates)";
-    else
-      subtitle = "first valid part: iteration " + std::to_string(first->iteration) + ", " +
-                 std::to_string(first->evaluated) + " of " + std::to_string(evaluated) + " candidates";
-    TextStyle sub;
-    sub.scale = fs;
-    sub.h_align = HAlign::Center;
-    fitted_text(canvas, o.width_px / 2, subtitle_top, subtitle, kTickInk, sub, o.width_px - 2 * margin);
-  }
-
-  for (int k = 0; k < 3; ++k) {
-    const PanelSpec& spec = specs[k];
-    const Axis& ya = y_axes[k];
-    ConvergencePanel panel;
-    panel.y_label = spec.y_label;
-    panel.left_px = left;
-    panel.right_px = right;
-    panel.top_px = panels_top + k * (panel_h + gap);
-    panel.bottom_px = panel.top_px + panel_h;
-    panel.x_min = x_axis.min;
-    panel.x_max = x_axis.max;
-    panel.y_min = ya.min;
-    panel.y_max = ya.max;
-    const auto px_x = [&](double x) {
-      return panel.left_px + (x - panel.x_min) / (panel.x_max - panel.x_min) * (panel.right_px - panel.left_px);
-    };
-    const auto px_y = [&](double y) {
-      return panel.bottom_px - (y - panel.y_min) / (panel.y_max - panel.y_min) * (panel.bottom_px - panel.top_px);
-    };
-    const int top = static_cast<int>(panel.top_px), bottom = static_cast<int>(panel.bottom_px);
-
-    // Grid and ticks.
-    TextStyle tick_text;
-    tick_text.scale = fs;
-    tick_text.h_align = HAlign::Right;
-    tick_text.v_align = VAlign::Middle;
-    for (double t : ya.ticks) {
-      const double y = std::floor(px_y(t)) + 0.5;
-      canvas.line(left, y, right, y, kGrid);
-      canvas.line(left - 7, y, left, y, kTickInk, {2.0});
-      canvas.text(left - 12, static_cast<int>(y) + fs, format_tick(t, ya), kInk, tick_text);  // + fs: the 7-row cap height sits above the descender rows
-    }
-    for (double t : x_axis.ticks) {
-      const double x = std::floor(px_x(t)) + 0.5;
-      canvas.line(x, top, x, bottom, kGrid);
-      canvas.line(x, bottom, x, bottom + 7, kTickInk, {2.0});
-      if (k == 2) {
-        TextStyle xt;
-        xt.scale = fs;
-        xt.h_align = HAlign::Center;
-        canvas.text(static_cast<int>(x), bottom + 12, format_tick(t, x_axis), kInk, xt);
-      }
-    }
-    // Frame.
-    canvas.line(left + 0.5, top + 0.5, right - 0.5, top + 0.5, kInk, {1.0});
-    canvas.line(left + 0.5, bottom - 0.5, right - 0.5, bottom - 0.5, kInk, {1.0});
-    canvas.line(left + 0.5, top + 0.5, left + 0.5, bottom - 0.5, kInk, {1.0});
-    canvas.line(right - 0.5, top + 0.5, right - 0.5, bottom - 0.5, kInk, {1.0});
-    // Y label, rotated, centred on the panel.
-    TextStyle yl;
-    yl.scale = fs;
-    yl.vertical = true;
-    yl.v_align = VAlign::Middle;
-    while (yl.scale > 1 && RasterCanvas::text_width_px(spec.y_label, yl.scale) > panel_h) --yl.scale;
-    canvas.text(margin, (top + bottom) / 2, spec.y_label, kInk, yl);
-
-    // Reference line (limit), dashed, with its label on a white box at the top right.
-    std::vector<Box> keep_out;  // what the value label must not cover
-    if (std::isfinite(spec.reference)) {
-      const double y = px_y(spec.reference);
-      canvas.line(left + 1, y, right - 1, y, ConvergencePlotColours::limit, {2.0, 12.0, 8.0});
-      TextStyle lt;
-      lt.scale = fs;
-      lt.h_align = HAlign::Right;
-      const int w = RasterCanvas::text_width_px(spec.reference_label, fs);
-      // Above the line when there is room in the panel, else below it.
-      const int ly = y - char_h - 6 > top + 2 ? static_cast<int>(y) - char_h - 5 : static_cast<int>(y) + 6;
-      canvas.fill_rect(right - 10 - w - 4, ly - 2, right - 6, ly + char_h + 1, kWhite);
-      keep_out.push_back({right - 10 - w - 4, ly - 2, right - 6, ly + char_h + 1});
-      keep_out.push_back({left, static_cast<int>(y) - 3, right, static_cast<int>(y) + 4});
-      canvas.text(right - 10, ly, spec.reference_label, ConvergencePlotColours::limit, lt);
-    }
-
-    // Curve: segments between consecutive plotted points, then the markers on top.
-    const ConvergencePoint* prev = nullptr;
-    double prev_v = 0;
-    for (size_t i = 0; i < pts.size(); ++i) {
-      const double v = spec.values[i];
-      if (!std::isfinite(v)) continue;
-      if (prev)
-        canvas.line(px_x(x_value(*prev, o.x_axis)), px_y(prev_v), px_x(x_value(pts[i], o.x_axis)), px_y(v), spec.colour,
-                    {o.line_thickness_px});
-      prev = &pts[i];
-      prev_v = v;
-    }
-    for (size_t i = 0; i < pts.size(); ++i) {
-      const double x = px_x(x_value(pts[i], o.x_axis));
-      const double v = spec.values[i];
-      if (std::isfinite(v)) {
-        canvas.marker(x, px_y(v), MarkerShape::FilledCircle, o.marker_radius_px, spec.colour);
-        ++panel.plotted_points;
-      } else {
-        const double r = std::max(o.marker_radius_px, 4.0);
-        canvas.marker(x, panel.bottom_px - r - 4, MarkerShape::Cross, r, ConvergencePlotColours::not_found);
-        ++panel.not_found_points;
-      }
-    }
-    // The last value in numbers, since a curve far below its limit is hard to read off.
-    if (prev) {
-      TextStyle vt;
-      vt.scale = fs;
-      vt.h_align = HAlign::Right;
-      const int x = static_cast<int>(px_x(x_value(*prev, o.x_axis)));
-      const int y = static_cast<int>(px_y(prev_v));
-      const int r = static_cast<int>(std::ceil(o.marker_radius_px));
-      const std::string label = format_value(prev_v, 3) + spec.unit_suffix;
-      const int w = RasterCanvas::text_width_px(label, fs);
-      // Above the point, else below: the first place inside the panel clear of the limit and its label.
-      int ty = y - r - 6 - char_h;
-      for (int candidate : {y - r - 6 - char_h, y + r + 6}) {
-        const Box b{x - w, candidate, x, candidate + char_h};
-        const bool inside = b.y0 > top + 2 && b.y1 < bottom - 2;
-        const bool clear = std::none_of(keep_out.begin(), keep_out.end(), [&](const Box& k) { return k.overlaps(b); });
-        if (inside && clear) {
-          ty = candidate;
-          break;
-        }
-      }
-      canvas.text(x, ty, label, spec.colour, vt);
-    }
-    if (panel.plotted_points == 0) {
-      TextStyle nt;
-      nt.scale = fs;
-      nt.h_align = HAlign::Center;
-      nt.v_align = VAlign::Middle;
-      // A third of the way down: clear of a limit line at mid-height.
-      canvas.text((left + right) / 2, top + (bottom - top) / 3, "no valid part found", ConvergencePlotColours::not_found, nt);
-    }
-    plot.panels.push_back(panel);
-  }
-
-  // X label under the bottom panel; the legend of the grey crosses at its right.
-  {
-    const int y = static_cast<int>(plot.panels.back().bottom_px) + 12 + char_h + 10;
-    TextStyle xl;
-    xl.scale = fs;
-    xl.h_align = HAlign::Center;
-    canvas.text((left + right) / 2, y,
-                o.x_axis == ConvergenceXAxis::Iteration ? "iteration (beam-search level)" : "candidates evaluated", kInk,
-                xl);
-    const bool any_not_found = std::any_of(plot.panels.begin(), plot.panels.end(),
-                                           [](const ConvergencePanel& p) { return p.not_found_points > 0; });
-    if (any_not_found) {
-      const std::string legend = "no valid part yet";
-      TextStyle lg;
-      lg.scale = fs;
-      lg.h_align = HAlign::Right;
-      const int ly = y + char_h + 8;
-      canvas.text(right, ly, legend, ConvergencePlotColours::not_found, lg);
-      const double r = std::max(o.marker_radius_px, 4.0);
-      canvas.marker(right - RasterCanvas::text_width_px(legend, fs) - r - 10, ly + 3.5 * fs, MarkerShape::Cross, r,
-                    ConvergencePlotColours::not_found);
-    }
-  }
-  plot.image = canvas.image();
-  return plot;
+ConvergencePlotLayout write_convergence_png(const ConvergenceHistory& history, const ConvergenceOptions& options,
+                                            const std::string& path) {
+  check_options(options);
+  const std::vector<PanelSpec> specs = panel_specs(history);
+  // RGB24: the PNG is 8-bit RGB, no alpha.
+  std::unique_ptr<cairo_surface_t, decltype(&cairo_surface_destroy)> surface(
+      cairo_image_surface_create(CAIRO_FORMAT_RGB24, options.width_px, options.height_px), cairo_surface_destroy);
+  std::unique_ptr<cairo_t, decltype(&cairo_destroy)> context(cairo_create(surface.get()), cairo_destroy);
+  cairo_t* cr = context.get();
+  cairo_select_font_face(cr, "DejaVu Sans", CAIRO_FONT_SLANT_NORMAL, CAIRO_FONT_WEIGHT_NORMAL);
+  Figure f = lay_out(cr, history, specs, options);
+  set_colour(cr, kWhite);
+  cairo_paint(cr);
+  draw_title(cr, history, f, options);
+  for (int k = 0; k < 3; ++k) draw_panel(cr, f, k, specs[k], history.points, options);
+  draw_footer(cr, f, specs, options);
+  cairo_surface_flush(surface.get());
+  if (cairo_status(cr) != CAIRO_STATUS_SUCCESS) cannot_write(path, cairo_status_to_string(cairo_status(cr)));
+  write_png_atomically(surface.get(), path);
+  return f.layout;
 }
 
 }  // namespace sheetgen

@@ -1,27 +1,21 @@
 #pragma once
-// PNG encoding of an RgbImage (PNG spec, ISO/IEC 15948): signature, IHDR
-// (8-bit truecolour, no interlace), one zlib-compressed IDAT, IEND.
-#include <cstdint>
+// Transitional (issue 31): the names compose/generate.cpp used before
+// write_convergence_png, so the CLI keeps building until its caller calls that
+// directly; delete this file then. There is no PNG code here: the "image" is
+// the history, drawn with cairo when it is written.
 #include <string>
-#include <vector>
 
-#include "sheetgen/report/rgb_image.hpp"
+#include "sheetgen/report/convergence_plot.hpp"
 
 namespace sheetgen {
 
-struct PngOptions {
-  int compression_level = 6;  // zlib level 0 (stored) .. 9 (smallest); 6 is zlib's default
+using RgbImage = ConvergenceHistory;
+struct ConvergencePlot {
+  ConvergenceHistory image;
 };
-
-// The PNG file bytes. Throws std::invalid_argument naming the field when the
-// image is empty, larger than 65536 px on a side or 2^26 px in all, or its pixel buffer is not
-// width * height * 3 bytes.
-std::vector<std::uint8_t> encode_png(const RgbImage& image, const PngOptions& options = {});
-
-// CRC-32 of a chunk as PNG stores it: over the 4-byte type and then the data.
-std::uint32_t png_chunk_crc(const std::string& type, const std::vector<std::uint8_t>& data);
-
-// Writes encode_png(image) to `path`; throws std::runtime_error naming the path on failure.
-void write_png_file(const std::string& path, const RgbImage& image, const PngOptions& options = {});
+inline ConvergencePlot draw_convergence_plot(const ConvergenceHistory& history) { return {history}; }
+inline void write_png_file(const std::string& path, const RgbImage& history) {
+  write_convergence_png(history, ConvergenceOptions{}, path);
+}
 
 }  // namespace sheetgen
