@@ -7,12 +7,12 @@
 #include <cstring>
 #include <iostream>
 
-#include "sheetgen/compose/generate.hpp"
 #include "sheetgen/core/input_error.hpp"
 #include "sheetgen/core/problem.hpp"
 #include "sheetgen/env/environment.hpp"
 #include "sheetgen/fem/ccx_export.hpp"
 #include "sheetgen/fem/fem_error.hpp"
+#include "sheetgen/pipeline/generate.hpp"
 #include "sheetgen/structure/part_model.hpp"
 
 #include <atomic>

@@ -1,7 +1,7 @@
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
 
-#include "sheetgen/compose/generate.hpp"
+#include "sheetgen/pipeline/generate.hpp"
 
 namespace py = pybind11;
 

@@ -1,4 +1,4 @@
-#include "sheetgen/compose/generate.hpp"
+#include "sheetgen/pipeline/generate.hpp"
 
 #include <chrono>
 #include <cstdio>

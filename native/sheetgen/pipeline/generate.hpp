@@ -1,5 +1,5 @@
 #pragma once
-// The whole pipeline for every load of a problem (DESIGN.md "Pipeline"):
+// The whole pipeline for every load of a problem (docs/architecture.md "Pipeline"):
 // environment -> segment discovery -> segment composition -> final check at the
 // default mesh -> manufacturing plan. Parts of earlier loads become obstacles
 // for later ones. Progress and cancel through one object another thread reads
@@ -90,7 +90,7 @@ struct GenerateResult {
 
 GenerateResult generate(const Problem& problem, const GenerateOptions& options = {}, GenerateProgress* progress = nullptr);
 
-// "sheetgen-result/1" (DESIGN.md "Interfaces"); `problem_ref` is stored as
+// "sheetgen-result/1" (docs/architecture.md "Interfaces"); `problem_ref` is stored as
 // "problem" (a path relative to the result file) so export-ccx can rebuild loads.
 nlohmann::json result_json(const Problem& problem, const GenerateResult& result, const std::string& problem_ref);
 
