@@ -13,6 +13,7 @@
 #include "sheetgen/fem/ccx_export.hpp"
 #include "sheetgen/fem/fem_error.hpp"
 #include "sheetgen/pipeline/generate.hpp"
+#include "sheetgen/pipeline/output_files.hpp"
 #include "sheetgen/structure/part_model.hpp"
 
 #include <atomic>

@@ -2,6 +2,8 @@
 #include <pybind11/stl.h>
 
 #include "sheetgen/pipeline/generate.hpp"
+#include "sheetgen/pipeline/output_files.hpp"
+#include "sheetgen/pipeline/result_json.hpp"
 
 namespace py = pybind11;
 
@@ -44,7 +46,7 @@ void bind_generate(py::module_& m) {
       py::arg("problem"), py::arg("progress") = nullptr, py::arg("seed") = py::none(), py::arg("chains") = py::none(),
       py::arg("iterations") = py::none(), py::arg("beam_width") = py::none(), py::arg("threads") = py::none(),
       py::arg("right_angles") = false,
-      "Design a part for every load (DESIGN.md pipeline). Releases the GIL; pass a GenerateProgress to watch or cancel.");
+      "Design a part for every load (docs/architecture.md \"Pipeline\"). Releases the GIL; pass a GenerateProgress to watch or cancel.");
 
   m.def(
       "result_json",

@@ -3,26 +3,17 @@
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
-#include <filesystem>
-#include <fstream>
 #include <set>
-#include <sstream>
 #include <thread>
-#include <unistd.h>
 
 #include "sheetgen/core/cancelled.hpp"
 #include "sheetgen/core/geometry.hpp"
 #include "sheetgen/env/environment.hpp"
 #include "sheetgen/fem/rivet_layout.hpp"
-#include "sheetgen/part/exports.hpp"
 #include "sheetgen/part/validity.hpp"
-#include "sheetgen/report/convergence_plot.hpp"
-#include "sheetgen/report/png_writer.hpp"
 #include "sheetgen/structure/part_model.hpp"
 
 namespace sheetgen {
-
-namespace fs = std::filesystem;
 
 const char* to_string(Stage s) {
   switch (s) {
@@ -348,140 +339,6 @@ GenerateResult generate(const Problem& input, const GenerateOptions& options, Ge
   if (progress) progress->stage = static_cast<int>(Stage::Done);
   result.seconds = seconds_since(start);
   return result;
-}
-
-nlohmann::json result_json(const Problem& problem, const GenerateResult& result, const std::string& problem_ref) {
-  using nlohmann::json;
-  auto v3 = [](const Vec3& p) { return json::array({p.x(), p.y(), p.z()}); };
-  json parts = json::array();
-  for (size_t i = 0; i < result.loads.size(); ++i) {
-    const LoadOutcome& o = result.loads[i];
-    json p;
-    p["load"] = o.load;
-    p["status"] = o.ok ? "ok" : "no_valid_part";
-    if (!o.ok) p["reason"] = o.reason;
-    const Candidate& c = o.part;
-    p["segments"] = c.segments;
-    if (!c.segments.empty()) {
-      p["area_m2"] = c.area;
-      p["mass_kg"] = c.area * problem.material.thickness * problem.material.density;
-      p["bends"] = c.bends;
-      p["cost_m2"] = c.cost;
-      if (c.analysed) {
-        p["compliance"] = c.fem.compliance;
-        p["compliance_limit"] = c.fem.compliance_limit;
-        p["deflection_m"] = c.fem.deflection;
-        p["deflection_along_force_m"] = c.fem.deflection_along_force;
-        p["max_von_mises_pa"] = c.fem.max_von_mises;
-        p["margin_of_safety"] = c.fem.margin_of_safety;
-        p["fem_elements"] = c.fem.elements;
-      }
-      p["tabs"] = part_json(c.part, o.realised);
-      json rivets = json::array();
-      for (const Vec3& r : o.rivets) rivets.push_back(v3(r));
-      p["rivets"] = rivets;
-      json self_rivets = json::array();
-      for (const auto& t : c.self_rivets)
-        self_rivets.push_back({{"tabs", {t.polygon_a, t.polygon_b}}, {"points", {v3(t.point_a), v3(t.point_b)}}});
-      p["self_rivets"] = self_rivets;
-      p["bend_sequence"] = o.plan.sequence.order;
-      p["flat_pattern"] = flat_pattern_json(o.plan.flat, o.plan.sequence.order, o.plan.holes);
-    }
-    json history = json::array();
-    for (const auto& h : o.history)
-      history.push_back({{"iteration", h.level}, {"evaluated", h.evaluated}, {"found", h.found}, {"best_cost_m2", h.best_cost},
-                         {"best_area_m2", h.best_area}, {"compliance", h.compliance}, {"margin_of_safety", h.margin_of_safety}});
-    p["history"] = history;
-    p["library_segments"] = o.library_size;
-    p["fem_calls"] = o.fem_calls;
-    p["self_rivet_candidates"] = o.self_rivet_candidates;
-    p["lip_candidates"] = o.lip_candidates;
-    p["skipped_by_cost"] = o.skipped_by_cost;
-    p["screen_fem_calls"] = o.screen_fem_calls;
-    p["screened_out"] = o.screened_out;
-    p["composition_reruns"] = o.composition_reruns;
-    p["web_pass_tried"] = o.web_pass_tried;
-    p["web_roots"] = o.web_roots;
-    p["flat_pass_tried"] = o.flat_pass_tried;
-    p["flat_pass"] = o.flat_pass;
-    p["timing"] = {{"environment_s", o.environment_seconds}, {"discovery_s", o.discovery_seconds},
-                   {"composition_s", o.composition_seconds}, {"total_s", o.total_seconds}};
-    parts.push_back(p);
-  }
-  json doc;
-  doc["format"] = "sheetgen-result/1";
-  doc["problem"] = problem_ref;
-  doc["parts"] = parts;
-  doc["search"] = {{"chains", result.search.chains},         {"iterations", result.search.iterations},
-                   {"beam_width", result.search.beam_width}, {"seed", result.search.seed},
-                   {"threads", result.search.threads},       {"right_angles", result.right_angles},
-                   {"flat_extensions", result.flat_extensions},
-                   {"self_rivet", result.self_rivet},         {"stiffening_lips", result.stiffening_lips},
-                   {"web_fallback", result.web_fallback},
-                   {"flat_fallback", result.flat_fallback}};
-  doc["timing"] = {{"total_s", result.seconds}};
-  return doc;
-}
-
-namespace {
-
-std::string history_csv(const LoadOutcome& o) {
-  std::ostringstream s;
-  s.precision(10);
-  s << "iteration,evaluated,found,best_cost_m2,best_area_m2,compliance_J,margin_of_safety\n";
-  for (const auto& h : o.history)
-    s << h.level << ',' << h.evaluated << ',' << (h.found ? 1 : 0) << ',' << h.best_cost << ',' << h.best_area << ','
-      << h.compliance << ',' << h.margin_of_safety << '\n';
-  return s.str();
-}
-
-// history.csv as a plot (paper Fig. 8), with the load's compliance limit and the required MS.
-RgbImage convergence_plot_image(const Problem& problem, const LoadOutcome& o) {
-  ConvergenceHistory h;
-  h.load = o.load;
-  for (const auto& r : o.history)
-    h.points.push_back({r.level, r.evaluated, r.found, r.best_area, r.compliance, r.margin_of_safety});
-  for (const Load& l : problem.loads)
-    if (l.name == o.load) h.compliance_limit_J = problem.requirements.compliance_limit(l.force.norm());
-  h.min_margin_of_safety = problem.requirements.min_margin_of_safety;
-  return draw_convergence_plot(h).image;
-}
-
-}  // namespace
-
-void write_outputs(const std::string& dir, const Problem& problem, const GenerateResult& result, const std::string& problem_path) {
-  const fs::path out = fs::u8path(dir);
-  std::error_code ec;
-  fs::create_directories(out, ec);
-  if (ec) throw std::runtime_error(dir + ": cannot create the output folder (" + ec.message() + ")");
-  const fs::path staging = out / (".sheetgen-staging-" + std::to_string(::getpid()));
-  fs::remove_all(staging, ec);
-  try {
-    fs::create_directories(staging);
-    for (const LoadOutcome& o : result.loads) {
-      const fs::path ld = staging / fs::u8path(o.load);
-      fs::create_directories(ld);
-      if (o.ok) write_manufacturing_files(ld.u8string(), o.realised, o.plan);
-      write_text_file((ld / "history.csv").u8string(), history_csv(o));
-      write_png_file((ld / "convergence.png").u8string(), convergence_plot_image(problem, o));
-    }
-    // result.json names the problem relative to itself.
-    std::string ref = problem_path;
-    const fs::path rel = fs::relative(fs::absolute(fs::u8path(problem_path)), fs::absolute(out), ec);
-    if (!ec && !rel.empty()) ref = rel.u8string();
-    write_text_file((staging / "result.json").u8string(), result_json(problem, result, ref).dump(2) + "\n");
-    // Move into place: load folders first, result.json last (its presence means the run finished).
-    for (const LoadOutcome& o : result.loads) {
-      const fs::path target = out / fs::u8path(o.load);
-      fs::remove_all(target);
-      fs::rename(staging / fs::u8path(o.load), target);
-    }
-    fs::rename(staging / "result.json", out / "result.json");
-    fs::remove_all(staging);
-  } catch (const std::exception& e) {
-    fs::remove_all(staging, ec);
-    throw std::runtime_error(std::string("writing the results failed: ") + e.what());
-  }
 }
 
 }  // namespace sheetgen

@@ -9,8 +9,6 @@
 #include <string>
 #include <vector>
 
-#include <nlohmann/json.hpp>
-
 #include "sheetgen/compose/composition.hpp"
 #include "sheetgen/core/problem.hpp"
 #include "sheetgen/discovery/discovery.hpp"
@@ -89,16 +87,5 @@ struct GenerateResult {
 };
 
 GenerateResult generate(const Problem& problem, const GenerateOptions& options = {}, GenerateProgress* progress = nullptr);
-
-// "sheetgen-result/1" (docs/architecture.md "Interfaces"); `problem_ref` is stored as
-// "problem" (a path relative to the result file) so export-ccx can rebuild loads.
-nlohmann::json result_json(const Problem& problem, const GenerateResult& result, const std::string& problem_ref);
-
-// Writes DIR/result.json and per load DIR/<load>/{part.obj, flat.dxf, flat.svg,
-// bends.csv, history.csv, convergence.png}. Everything is written under temporary names first
-// and renamed into place at the end, so a failed or cancelled run never leaves
-// files claiming success. Throws std::runtime_error naming the file on failure.
-void write_outputs(const std::string& dir, const Problem& problem, const GenerateResult& result,
-                   const std::string& problem_path);
 
 }  // namespace sheetgen

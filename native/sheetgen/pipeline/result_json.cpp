@@ -1,0 +1,97 @@
+#include "sheetgen/pipeline/result_json.hpp"
+
+#include "sheetgen/part/exports.hpp"
+
+namespace sheetgen {
+
+namespace {
+
+using nlohmann::json;
+
+json v3(const Vec3& p) { return json::array({p.x(), p.y(), p.z()}); }
+
+// The part of a load that has one (valid or the closest candidate): size,
+// cost, FEM at the default mesh, tabs, rivets and flat pattern.
+void add_part_fields(json& p, const Problem& problem, const LoadOutcome& o) {
+  const Candidate& c = o.part;
+  p["area_m2"] = c.area;
+  p["mass_kg"] = c.area * problem.material.thickness * problem.material.density;
+  p["bends"] = c.bends;
+  p["cost_m2"] = c.cost;
+  if (c.analysed) {
+    p["compliance"] = c.fem.compliance;
+    p["compliance_limit"] = c.fem.compliance_limit;
+    p["deflection_m"] = c.fem.deflection;
+    p["deflection_along_force_m"] = c.fem.deflection_along_force;
+    p["max_von_mises_pa"] = c.fem.max_von_mises;
+    p["margin_of_safety"] = c.fem.margin_of_safety;
+    p["fem_elements"] = c.fem.elements;
+  }
+  p["tabs"] = part_json(c.part, o.realised);
+  json rivets = json::array();
+  for (const Vec3& r : o.rivets) rivets.push_back(v3(r));
+  p["rivets"] = rivets;
+  json self_rivets = json::array();
+  for (const auto& t : c.self_rivets)
+    self_rivets.push_back({{"tabs", {t.polygon_a, t.polygon_b}}, {"points", {v3(t.point_a), v3(t.point_b)}}});
+  p["self_rivets"] = self_rivets;
+  p["bend_sequence"] = o.plan.sequence.order;
+  p["flat_pattern"] = flat_pattern_json(o.plan.flat, o.plan.sequence.order, o.plan.holes);
+}
+
+// The search of a load: history.csv's rows, statistics and times.
+void add_search_fields(json& p, const LoadOutcome& o) {
+  json history = json::array();
+  for (const auto& h : o.history)
+    history.push_back({{"iteration", h.level}, {"evaluated", h.evaluated}, {"found", h.found}, {"best_cost_m2", h.best_cost},
+                       {"best_area_m2", h.best_area}, {"compliance", h.compliance}, {"margin_of_safety", h.margin_of_safety}});
+  p["history"] = history;
+  p["library_segments"] = o.library_size;
+  p["fem_calls"] = o.fem_calls;
+  p["self_rivet_candidates"] = o.self_rivet_candidates;
+  p["lip_candidates"] = o.lip_candidates;
+  p["skipped_by_cost"] = o.skipped_by_cost;
+  p["screen_fem_calls"] = o.screen_fem_calls;
+  p["screened_out"] = o.screened_out;
+  p["composition_reruns"] = o.composition_reruns;
+  p["web_pass_tried"] = o.web_pass_tried;
+  p["web_roots"] = o.web_roots;
+  p["flat_pass_tried"] = o.flat_pass_tried;
+  p["flat_pass"] = o.flat_pass;
+  p["timing"] = {{"environment_s", o.environment_seconds}, {"discovery_s", o.discovery_seconds},
+                 {"composition_s", o.composition_seconds}, {"total_s", o.total_seconds}};
+}
+
+// One entry of parts[].
+json load_entry(const Problem& problem, const LoadOutcome& o) {
+  json p;
+  p["load"] = o.load;
+  p["status"] = o.ok ? "ok" : "no_valid_part";
+  if (!o.ok) p["reason"] = o.reason;
+  p["segments"] = o.part.segments;
+  if (!o.part.segments.empty()) add_part_fields(p, problem, o);
+  add_search_fields(p, o);
+  return p;
+}
+
+}  // namespace
+
+json result_json(const Problem& problem, const GenerateResult& result, const std::string& problem_ref) {
+  json parts = json::array();
+  for (const LoadOutcome& o : result.loads) parts.push_back(load_entry(problem, o));
+  json doc;
+  doc["format"] = "sheetgen-result/1";
+  doc["problem"] = problem_ref;
+  doc["parts"] = parts;
+  doc["search"] = {{"chains", result.search.chains},         {"iterations", result.search.iterations},
+                   {"beam_width", result.search.beam_width}, {"seed", result.search.seed},
+                   {"threads", result.search.threads},       {"right_angles", result.right_angles},
+                   {"flat_extensions", result.flat_extensions},
+                   {"self_rivet", result.self_rivet},         {"stiffening_lips", result.stiffening_lips},
+                   {"web_fallback", result.web_fallback},
+                   {"flat_fallback", result.flat_fallback}};
+  doc["timing"] = {{"total_s", result.seconds}};
+  return doc;
+}
+
+}  // namespace sheetgen
