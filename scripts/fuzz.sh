@@ -7,6 +7,10 @@
 #
 #   bash scripts/fuzz.sh                          # every target, 60 s each
 #   FUZZ_SECONDS=600 bash scripts/fuzz.sh fuzz_mesh_readers
+#   bash scripts/fuzz.sh --replay                 # only replay the saved inputs (the fast test tier)
+#
+# Every run first replays the saved regressions and the seed corpus through
+# ctest (tests/fuzz/CMakeLists.txt); --replay stops there.
 #
 # Environment: FUZZ_SECONDS (per target, default 60), FUZZ_BUILD_DIR,
 # FUZZ_ARTIFACTS (default $FUZZ_BUILD_DIR/artifacts), FUZZ_JOBS (parallel
@@ -25,6 +29,8 @@ MALLOC_MB="${FUZZ_MALLOC_MB:-512}"
 export CCACHE_DIR="${CCACHE_DIR:-$HOME/.cache/ccache}"
 
 ALL_TARGETS=(fuzz_problem_json fuzz_mesh_readers)
+REPLAY_ONLY=0
+if [ "${1:-}" = "--replay" ]; then REPLAY_ONLY=1; shift; fi
 TARGETS=("$@")
 if [ ${#TARGETS[@]} -eq 0 ]; then TARGETS=("${ALL_TARGETS[@]}"); fi
 
@@ -37,6 +43,11 @@ cmake --build "$BUILD_DIR" -j 2 --target "${TARGETS[@]}"
 
 export ASAN_OPTIONS="${ASAN_OPTIONS:-detect_leaks=1:allocator_may_return_null=0}"
 export UBSAN_OPTIONS="${UBSAN_OPTIONS:-print_stacktrace=1:halt_on_error=1}"
+
+echo "== replay of the saved inputs"
+replay_regex="^($(IFS='|'; echo "${TARGETS[*]}"))_replay\$"
+ctest --test-dir "$BUILD_DIR" -L fuzz -R "$replay_regex" --output-on-failure </dev/null
+if [ "$REPLAY_ONLY" = 1 ]; then exit 0; fi
 
 failed=()
 for t in "${TARGETS[@]}"; do

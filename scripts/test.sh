@@ -1,19 +1,96 @@
 #!/usr/bin/env bash
-# The whole test suite on a fresh Debian bookworm machine: installs what the
-# project needs, builds, and runs every test (GoogleTest through ctest, the
-# Python tests, and the tests inside `blender -b`). Exit status 0 = all passed.
+# The test suite on a fresh Debian bookworm machine: installs what the project
+# needs, builds, and runs the tests. Exit status 0 = all passed.
+#
+#   bash scripts/test.sh          # fast tier (what .ci/run runs; <= 20 min from a cold ccache)
+#   bash scripts/test.sh --full   # fast tier + the slow checks (about an hour)
+#
+# Fast tier: every GoogleTest unit and property test except the CalculiX
+# comparisons, the Python checks, the tests inside `blender -b`, every sample
+# scene solved at reduced settings and checked by verify without CalculiX, the
+# fast areas (core, env, part, fem) again under ASan + UBSan, and the saved fuzz
+# inputs replayed. The full tier adds every test labelled `full` (CalculiX and
+# solid-model checks of the sample parts, the scenes at the default settings,
+# the heavy convergence studies), the search areas under the sanitizers, and
+# bounded fuzzing (FUZZ_SECONDS per target, default 60). docs/testing.md says
+# which test is where and why.
 set -euo pipefail
 ROOT="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 BUILD_DIR="${BUILD_DIR:-$ROOT/build}"
+FULL=0
+for arg in "$@"; do
+  case "$arg" in
+    --full) FULL=1 ;;
+    *) echo "test.sh: unknown argument '$arg' (only --full is known)" >&2; exit 1 ;;
+  esac
+done
+
+LOGS="$BUILD_DIR/test-logs"
+start=$SECONDS
+stage() { echo "== $1 (at $((SECONDS - start)) s)"; }
+
 bash "$ROOT/scripts/install_deps.sh"
-echo "== build ($BUILD_DIR)"
-time BUILD_DIR="$BUILD_DIR" bash "$ROOT/scripts/build.sh"
-echo "== tests"
-ctest --test-dir "$BUILD_DIR" --output-on-failure -j "$(nproc)" </dev/null
-# The sanitizer build runs the fast areas; the search areas (discovery, structure,
-# compose) take over 20 minutes under ASan and are run by `scripts/sanitize.sh` alone.
-echo "== sanitizers (ASan + UBSan, build-sanitize/)"
-SANITIZE_TARGETS="sheetgen sheetgen_core_tests sheetgen_env_tests sheetgen_part_tests sheetgen_fem_tests" \
-  bash "$ROOT/scripts/sanitize.sh" -L "core|env|part|fem" </dev/null
-echo "== fuzzers (${FUZZ_SECONDS:-60} s per target, build-fuzz/)"
-FUZZ_SECONDS="${FUZZ_SECONDS:-60}" bash "$ROOT/scripts/fuzz.sh" </dev/null
+stage "build ($BUILD_DIR)"
+BUILD_DIR="$BUILD_DIR" bash "$ROOT/scripts/build.sh"
+mkdir -p "$LOGS"
+rm -f "$LOGS"/*.log
+
+# Each ctest run's log is kept so the closing line can add up every run.
+status=0
+run_ctest() {  # run_ctest NAME CTEST-ARGS...
+  local name="$1"; shift
+  set +e
+  ctest "$@" --output-on-failure </dev/null 2>&1 | tee "$LOGS/$name.log"
+  local rc=${PIPESTATUS[0]}
+  set -e
+  if [ "$rc" -ne 0 ]; then status=1; fi
+}
+
+stage "tests"
+if [ "$FULL" = 1 ]; then
+  run_ctest tests --test-dir "$BUILD_DIR" -j "$(nproc)"
+else
+  run_ctest tests --test-dir "$BUILD_DIR" -j "$(nproc)" -LE full
+fi
+
+stage "sanitizers (ASan + UBSan, build-sanitize/)"
+set +e
+if [ "$FULL" = 1 ]; then
+  bash "$ROOT/scripts/sanitize.sh" </dev/null 2>&1 | tee "$LOGS/sanitize.log"
+else
+  # The search areas (discovery, structure, compose) take over 20 minutes under
+  # ASan; the fast tier runs the areas below them, which every search builds on.
+  SANITIZE_TARGETS="sheetgen sheetgen_core_tests sheetgen_env_tests sheetgen_part_tests sheetgen_fem_tests" \
+    bash "$ROOT/scripts/sanitize.sh" -L "core|env|part|fem" -LE full </dev/null 2>&1 | tee "$LOGS/sanitize.log"
+fi
+if [ "${PIPESTATUS[0]}" -ne 0 ]; then status=1; fi
+set -e
+
+set +e
+if [ "$FULL" = 1 ]; then
+  stage "fuzzers (${FUZZ_SECONDS:-60} s per target, build-fuzz/)"
+  FUZZ_SECONDS="${FUZZ_SECONDS:-60}" bash "$ROOT/scripts/fuzz.sh" </dev/null 2>&1 | tee "$LOGS/fuzz.log"
+else
+  stage "fuzz inputs replayed (build-fuzz/)"
+  bash "$ROOT/scripts/fuzz.sh" --replay </dev/null 2>&1 | tee "$LOGS/fuzz.log"
+fi
+if [ "${PIPESTATUS[0]}" -ne 0 ]; then status=1; fi
+set -e
+
+# One closing line over every ctest run (ctest prints one per run).
+passed=0; failed=0
+for log in "$LOGS"/*.log; do
+  line=$(grep -E "tests passed, [0-9]+ tests? failed out of [0-9]+" "$log" | tail -1 || true)
+  if [ -n "$line" ]; then
+    f=$(echo "$line" | sed -E 's/.* ([0-9]+) tests? failed out of ([0-9]+).*/\1/')
+    n=$(echo "$line" | sed -E 's/.* failed out of ([0-9]+).*/\1/')
+    passed=$((passed + n - f)); failed=$((failed + f))
+  elif [ "$(basename "$log")" != fuzz.log ]; then
+    failed=$((failed + 1))   # a stage that never reached ctest (a build failure) counts as a failure
+  fi
+done
+tier=fast; if [ "$FULL" = 1 ]; then tier=full; fi
+echo "test.sh ($tier tier, $((SECONDS - start)) s)"
+echo "tests: $passed passed, $failed failed"
+if [ "$failed" -ne 0 ]; then status=1; fi
+exit "$status"
