@@ -4,7 +4,6 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
-#include <functional>
 
 #include "sheetgen/core/geometry.hpp"
 #include "sheetgen/core/polygon_geometry.hpp"
@@ -43,193 +42,246 @@ struct Junction {
   bool start_relief = false, end_relief = false, merged_with_next = false;
 };
 
-}  // namespace
-
-FlatPattern unfold(const Part& part, const SheetSpec& spec, const FlatPatternOptions& opt) {
+// What the unfolding steps share. Only the first failure is kept: the later
+// ones are usually its consequences.
+struct Unfolding {
   FlatPattern fp;
-  fp.frame = part.base;
-  const int n = part.size();
-  if (n == 0) return fp;
-  const double wr = opt.relief_width > 0 ? opt.relief_width : spec.thickness;
-  const double ct = opt.corner_tolerance;
-  const double kerf = spec.manufacturing.kerf;
-  auto fail = [&](ValidityReason r, int tab, const std::string& msg) {
+  std::vector<Junction> junction;                      // per tab (unused for the base)
+  std::vector<std::vector<std::vector<int>>> on_edge;  // children per (parent, edge), sorted along the edge
+  double wr = 0;    // m, relief width
+  double ct = 0;    // m, corner tolerance
+  double kerf = 0;  // m
+
+  void fail(ValidityReason r, int tab, const std::string& msg) {
     if (fp.status == ValidityReason::Ok) {
       fp.status = r;
       fp.tab = tab;
       fp.message = msg;
     }
-  };
+  }
+};
 
+// In the base tab's flat coordinates.
+Vec2 flat_point(const BaseTab& base, const Vec3& p) {
+  const Vec3 r = p - base.origin;
+  return Vec2(r.dot(base.x_axis), r.dot(base.y_axis));
+}
+
+Vec2 flat_direction(const BaseTab& base, const Vec3& v) { return Vec2(v.dot(base.x_axis), v.dot(base.y_axis)).normalized(); }
+
+// Every tab unbent (theta3 = 0) and pushed away from its parent by its bend length change dL.
+RealiseOptions unbent_options(const Part& part, const SheetSpec& spec) {
+  const int n = part.size();
   RealiseOptions ro;
   ro.angles.assign(n, 0.0);
   ro.shifts.assign(n, 0.0);
   for (int i = 1; i < n; ++i) ro.shifts[i] = bend_length_change(part.tabs[i].params.theta3, spec);
-  const RealisedPart flat3 = realise(part, ro);
-  const BaseTab& base = part.base;
-  auto to2 = [&](const Vec3& p) { const Vec3 r = p - base.origin; return Vec2(r.dot(base.x_axis), r.dot(base.y_axis)); };
-  auto dir2 = [&](const Vec3& v) { return Vec2(v.dot(base.x_axis), v.dot(base.y_axis)).normalized(); };
+  return ro;
+}
 
-  fp.pieces.resize(n);
-  {
-    FlatPiece& pc = fp.pieces[0];
-    pc.tab = 0;
-    pc.polygon = base.outline;
-    pc.sharp = base.outline;
-  }
-  std::vector<Junction> junction(n);
-  for (int i = 1; i < n; ++i) {
-    const Tab& tab = part.tabs[i];
-    const TabParameters& p = tab.params;
-    const RealisedTab& ft = flat3.tabs[i];
-    FlatPiece& pc = fp.pieces[i];
-    const double dL = ro.shifts[i];
-    pc.tab = i;
-    pc.parent = tab.parent;
-    pc.shift = dL;
-    pc.x_axis = dir2(ft.x_axis);
-    pc.y_axis = dir2(ft.y_axis);
-    pc.origin = to2(ft.origin) - dL * pc.y_axis;  // P0 on the parent's flat edge line
-    for (const Vec3& c : ft.corners) pc.sharp.push_back(to2(c));
-    const double delta = -dL * std::tan(p.theta2);  // where the shifted side lines meet the parent's edge line
-    const Vec2 J0 = pc.origin + delta * pc.x_axis, J1 = pc.origin + (p.w + delta) * pc.x_axis;
-    pc.polygon = {J1, J0, pc.sharp[2], pc.sharp[3]};
-    if (!((pc.sharp[2] - J0).dot(pc.y_axis) > 0 && (pc.sharp[3] - J0).dot(pc.y_axis) > 0) || signed_area(pc.polygon) <= 0)
-      fail(ValidityReason::BendZonesOverlap, i,
+// Tab i's flat piece, trimmed at (or extended to) its parent's edge line along its side lines.
+void lay_flat_piece(Unfolding& u, const Part& part, const RealisedTab& ft, int i, double dL) {
+  const TabParameters& p = part.tabs[i].params;
+  FlatPiece& pc = u.fp.pieces[i];
+  pc.tab = i;
+  pc.parent = part.tabs[i].parent;
+  pc.shift = dL;
+  pc.x_axis = flat_direction(part.base, ft.x_axis);
+  pc.y_axis = flat_direction(part.base, ft.y_axis);
+  pc.origin = flat_point(part.base, ft.origin) - dL * pc.y_axis;  // P0 on the parent's flat edge line
+  for (const Vec3& c : ft.corners) pc.sharp.push_back(flat_point(part.base, c));
+  const double delta = -dL * std::tan(p.theta2);  // where the shifted side lines meet the parent's edge line
+  const Vec2 J0 = pc.origin + delta * pc.x_axis, J1 = pc.origin + (p.w + delta) * pc.x_axis;
+  pc.polygon = {J1, J0, pc.sharp[2], pc.sharp[3]};
+  if (!((pc.sharp[2] - J0).dot(pc.y_axis) > 0 && (pc.sharp[3] - J0).dot(pc.y_axis) > 0) || signed_area(pc.polygon) <= 0)
+    u.fail(ValidityReason::BendZonesOverlap, i,
            "tab " + std::to_string(i) + " is too short for its bend: the flat pattern shortens it by " + mm(-dL));
+}
 
-    if (!is_flat_extension(p)) {
-      FlatBend bd;
-      bd.tab = i;
-      bd.parent = tab.parent;
-      bd.angle = p.theta3;
-      bd.direction = p.theta3 >= 0 ? BendDirection::Up : BendDirection::Down;
-      bd.length = p.w;
-      bd.inside_radius = spec.manufacturing.bend_radius;
-      bd.allowance = bend_allowance(p.theta3, spec);
-      bd.setback = bend_setback(p.theta3, spec);
-      bd.length_change = dL;
-      bd.centre_offset = 0.5 * bd.allowance - bd.setback;
-      bd.root_a = J0;
-      bd.root_b = J1;
-      bd.outward = pc.y_axis;
-      bd.a = J0 + bd.centre_offset * pc.y_axis;
-      bd.b = J1 + bd.centre_offset * pc.y_axis;
-      fp.bends.push_back(bd);
-    }
+FlatBend flat_bend(const FlatPiece& pc, const TabParameters& p, const SheetSpec& spec) {
+  const Vec2 J0 = pc.polygon[1], J1 = pc.polygon[0];
+  FlatBend bd;
+  bd.tab = pc.tab;
+  bd.parent = pc.parent;
+  bd.angle = p.theta3;
+  bd.direction = p.theta3 >= 0 ? BendDirection::Up : BendDirection::Down;
+  bd.length = p.w;
+  bd.inside_radius = spec.manufacturing.bend_radius;
+  bd.allowance = bend_allowance(p.theta3, spec);
+  bd.setback = bend_setback(p.theta3, spec);
+  bd.length_change = pc.shift;
+  bd.centre_offset = 0.5 * bd.allowance - bd.setback;
+  bd.root_a = J0;
+  bd.root_b = J1;
+  bd.outward = pc.y_axis;
+  bd.a = J0 + bd.centre_offset * pc.y_axis;
+  bd.b = J1 + bd.centre_offset * pc.y_axis;
+  return bd;
+}
 
-    // Position on the parent's flat edge.
-    const std::vector<Vec2>& Q = fp.pieces[tab.parent].polygon;
-    const int m = static_cast<int>(Q.size());
-    Junction& j = junction[i];
-    j.parent = tab.parent;
-    j.edge = tab.parent_edge;
-    j.S = Q[tab.parent_edge];
-    const Vec2 T = Q[(tab.parent_edge + 1) % m];
-    j.edge_length = (T - j.S).norm();
-    j.E = j.edge_length > 0 ? Vec2((T - j.S) / j.edge_length) : pc.x_axis;
-    j.V = pc.y_axis;
-    j.a0 = (J0 - j.S).dot(j.E);
-    j.a1 = (J1 - j.S).dot(j.E);
-    j.flat = is_flat_extension(p);
-    j.depth = j.flat ? 0.0 : bend_zone_depth(p.theta3, spec);
-    if (j.a0 < -ct || j.a1 > j.edge_length + ct)
-      fail(ValidityReason::FlatJunctionOutsideEdge, i,
+// Where tab i's root [J0, J1] lies on its parent's flat edge.
+void place_on_parent_edge(Unfolding& u, const Tab& tab, int i, const SheetSpec& spec) {
+  const FlatPiece& pc = u.fp.pieces[i];
+  const Vec2 J0 = pc.polygon[1], J1 = pc.polygon[0];
+  const std::vector<Vec2>& Q = u.fp.pieces[tab.parent].polygon;
+  const int m = static_cast<int>(Q.size());
+  Junction& j = u.junction[i];
+  j.parent = tab.parent;
+  j.edge = tab.parent_edge;
+  j.S = Q[tab.parent_edge];
+  const Vec2 T = Q[(tab.parent_edge + 1) % m];
+  j.edge_length = (T - j.S).norm();
+  j.E = j.edge_length > 0 ? Vec2((T - j.S) / j.edge_length) : pc.x_axis;
+  j.V = pc.y_axis;
+  j.a0 = (J0 - j.S).dot(j.E);
+  j.a1 = (J1 - j.S).dot(j.E);
+  j.flat = is_flat_extension(tab.params);
+  j.depth = j.flat ? 0.0 : bend_zone_depth(tab.params.theta3, spec);
+  if (j.a0 < -u.ct || j.a1 > j.edge_length + u.ct)
+    u.fail(ValidityReason::FlatJunctionOutsideEdge, i,
            "tab " + std::to_string(i) + " flat root [" + mm(j.a0) + ", " + mm(j.a1) + "] leaves the flat edge " +
                std::to_string(j.edge) + " of tab " + std::to_string(j.parent) + " (length " + mm(j.edge_length) +
                "); skewed tabs shift their flat root by dL tan(theta2)");
+}
+
+// Pieces, bends and junctions of every tab, parents first.
+void lay_out_tabs(Unfolding& u, const Part& part, const SheetSpec& spec, const RealisedPart& flat3, const std::vector<double>& shifts) {
+  const int n = part.size();
+  u.fp.pieces.resize(n);
+  FlatPiece& base = u.fp.pieces[0];
+  base.tab = 0;
+  base.polygon = part.base.outline;
+  base.sharp = part.base.outline;
+  u.junction.assign(n, Junction{});
+  for (int i = 1; i < n; ++i) {
+    lay_flat_piece(u, part, flat3.tabs[i], i, shifts[i]);
+    if (!is_flat_extension(part.tabs[i].params)) u.fp.bends.push_back(flat_bend(u.fp.pieces[i], part.tabs[i].params, spec));
+    place_on_parent_edge(u, part.tabs[i], i, spec);
   }
+}
 
-  // Children per (parent, edge), sorted along the edge.
-  std::vector<std::vector<std::vector<int>>> on_edge(n);
-  for (int i = 0; i < n; ++i) on_edge[i].resize(part.edge_count(i));
-  for (int i = 1; i < n; ++i) on_edge[part.tabs[i].parent][part.tabs[i].parent_edge].push_back(i);
-  for (auto& edges : on_edge)
-    for (auto& list : edges) std::sort(list.begin(), list.end(), [&](int a, int b) { return junction[a].a0 < junction[b].a0; });
+void sort_children_along_edges(Unfolding& u, const Part& part) {
+  const int n = part.size();
+  u.on_edge.assign(n, {});
+  for (int i = 0; i < n; ++i) u.on_edge[i].resize(part.edge_count(i));
+  for (int i = 1; i < n; ++i) u.on_edge[part.tabs[i].parent][part.tabs[i].parent_edge].push_back(i);
+  for (auto& edges : u.on_edge)
+    for (auto& list : edges)
+      std::sort(list.begin(), list.end(), [&](int a, int b) { return u.junction[a].a0 < u.junction[b].a0; });
+}
 
-  // Relief decisions and polygons.
-  for (int p = 0; p < n; ++p) {
-    for (auto& list : on_edge[p]) {
-      for (size_t k = 0; k < list.size(); ++k) {
-        Junction& j = junction[list[k]];
-        const Junction* prev = k > 0 ? &junction[list[k - 1]] : nullptr;
-        const Junction* next = k + 1 < list.size() ? &junction[list[k + 1]] : nullptr;
-        const bool prev_merged = prev && prev->merged_with_next;
-        if (j.a0 > ct && !prev_merged && !j.flat) {
-          j.start_relief = true;
-          const double room = prev ? j.a0 - prev->a1 - wr : j.a0;
-          if (room < wr - ct)
-            fail(ValidityReason::ReliefDoesNotFit, list[k],
-                 "tab " + std::to_string(list[k]) + " bend ends " + mm(j.a0) + " from the start of its parent edge: a relief needs " +
-                     mm(wr) + " (or end the bend at the corner)");
-        }
-        if (j.a1 < j.edge_length - ct && !j.flat) {
-          if (next && next->a0 - j.a1 < 2.0 * wr + kerf) {
-            j.merged_with_next = true;
-            const double gap = next->a0 - j.a1;
-            if (gap < 0)
-              fail(ValidityReason::FlatPatternOverlap, list[k + 1],
-                   "tabs " + std::to_string(list[k]) + " and " + std::to_string(list[k + 1]) + " overlap on their parent edge by " + mm(-gap));
-            else if (gap < wr - ct)
-              fail(ValidityReason::ReliefDoesNotFit, list[k + 1],
-                   "tabs " + std::to_string(list[k]) + " and " + std::to_string(list[k + 1]) + " leave a gap of " + mm(gap) +
-                       " on their parent edge: the shared relief needs " + mm(wr));
-          } else {
-            j.end_relief = true;
-            if (!next && j.edge_length - j.a1 < wr - ct)
-              fail(ValidityReason::ReliefDoesNotFit, list[k],
-                   "tab " + std::to_string(list[k]) + " bend ends " + mm(j.edge_length - j.a1) +
-                       " from the end of its parent edge: a relief needs " + mm(wr) + " (or end the bend at the corner)");
-          }
-        }
-        auto add_relief = [&](double from, double to, double depth, int other) {
-          FlatRelief r;
-          r.parent = p;
-          r.tab = list[k];
-          r.other_tab = other;
-          r.width = to - from;
-          r.depth = depth;
-          const Vec2 a = j.S + from * j.E, b = j.S + to * j.E;
-          r.polygon = ccw({a, b, b - depth * j.V, a - depth * j.V});
-          for (const Vec2& q : r.polygon)
-            if (!point_in_convex(q, fp.pieces[p].polygon, 1e-9))
-              fail(ValidityReason::ReliefDoesNotFit, list[k],
-                   "the relief of tab " + std::to_string(list[k]) + " (depth " + mm(depth) + ") does not fit inside tab " +
-                       std::to_string(p));
-          fp.reliefs.push_back(r);
-        };
-        if (j.start_relief) add_relief(j.a0 - wr, j.a0, j.depth, -1);
-        if (j.end_relief) add_relief(j.a1, j.a1 + wr, j.depth, -1);
-        if (j.merged_with_next && next->a0 > j.a1) add_relief(j.a1, next->a0, std::max(j.depth, next->depth), list[k + 1]);
-      }
+// Which ends of the k-th bend on a parent edge get a relief, and whether it shares one with the next bend.
+void decide_reliefs(Unfolding& u, const std::vector<int>& list, size_t k) {
+  const double wr = u.wr, ct = u.ct;
+  Junction& j = u.junction[list[k]];
+  const Junction* prev = k > 0 ? &u.junction[list[k - 1]] : nullptr;
+  const Junction* next = k + 1 < list.size() ? &u.junction[list[k + 1]] : nullptr;
+  const bool prev_merged = prev && prev->merged_with_next;
+  if (j.a0 > ct && !prev_merged && !j.flat) {
+    j.start_relief = true;
+    const double room = prev ? j.a0 - prev->a1 - wr : j.a0;
+    if (room < wr - ct)
+      u.fail(ValidityReason::ReliefDoesNotFit, list[k],
+             "tab " + std::to_string(list[k]) + " bend ends " + mm(j.a0) + " from the start of its parent edge: a relief needs " +
+                 mm(wr) + " (or end the bend at the corner)");
+  }
+  if (j.a1 < j.edge_length - ct && !j.flat) {
+    if (next && next->a0 - j.a1 < 2.0 * wr + u.kerf) {
+      j.merged_with_next = true;
+      const double gap = next->a0 - j.a1;
+      if (gap < 0)
+        u.fail(ValidityReason::FlatPatternOverlap, list[k + 1],
+               "tabs " + std::to_string(list[k]) + " and " + std::to_string(list[k + 1]) + " overlap on their parent edge by " + mm(-gap));
+      else if (gap < wr - ct)
+        u.fail(ValidityReason::ReliefDoesNotFit, list[k + 1],
+               "tabs " + std::to_string(list[k]) + " and " + std::to_string(list[k + 1]) + " leave a gap of " + mm(gap) +
+                   " on their parent edge: the shared relief needs " + mm(wr));
+    } else {
+      j.end_relief = true;
+      if (!next && j.edge_length - j.a1 < wr - ct)
+        u.fail(ValidityReason::ReliefDoesNotFit, list[k],
+               "tab " + std::to_string(list[k]) + " bend ends " + mm(j.edge_length - j.a1) +
+                   " from the end of its parent edge: a relief needs " + mm(wr) + " (or end the bend at the corner)");
+    }
+  }
+}
+
+struct Notch {
+  double from = 0, to = 0;  // m along the parent edge
+  double depth = 0;         // m
+  int other_tab = -1;       // the second sibling of a shared notch
+};
+
+void cut_relief(Unfolding& u, int parent, int tab, const Notch& n) {
+  const Junction& j = u.junction[tab];
+  FlatRelief r;
+  r.parent = parent;
+  r.tab = tab;
+  r.other_tab = n.other_tab;
+  r.width = n.to - n.from;
+  r.depth = n.depth;
+  const Vec2 a = j.S + n.from * j.E, b = j.S + n.to * j.E;
+  r.polygon = ccw({a, b, b - n.depth * j.V, a - n.depth * j.V});
+  for (const Vec2& q : r.polygon)
+    if (!point_in_convex(q, u.fp.pieces[parent].polygon, 1e-9))
+      u.fail(ValidityReason::ReliefDoesNotFit, tab,
+             "the relief of tab " + std::to_string(tab) + " (depth " + mm(n.depth) + ") does not fit inside tab " +
+                 std::to_string(parent));
+  u.fp.reliefs.push_back(r);
+}
+
+void cut_reliefs_of(Unfolding& u, int parent, const std::vector<int>& list, size_t k) {
+  const Junction& j = u.junction[list[k]];
+  if (j.start_relief) cut_relief(u, parent, list[k], {j.a0 - u.wr, j.a0, j.depth, -1});
+  if (j.end_relief) cut_relief(u, parent, list[k], {j.a1, j.a1 + u.wr, j.depth, -1});
+  if (j.merged_with_next) {
+    const Junction& next = u.junction[list[k + 1]];
+    if (next.a0 > j.a1) cut_relief(u, parent, list[k], {j.a1, next.a0, std::max(j.depth, next.depth), list[k + 1]});
+  }
+}
+
+// Walks the base boundary, splicing every child's boundary (with its relief
+// notches) into its parent's edge.
+class OutlineTracer {
+ public:
+  explicit OutlineTracer(Unfolding& u) : u_(u), out_(u.fp.outline), owner_(u.fp.outline_tab) {}
+
+  void trace(const BaseTab& base) {
+    for (int k = 0; k < static_cast<int>(base.outline.size()); ++k) {
+      push(base.outline[k], 0);
+      edge(0, k);
+    }
+    if (out_.size() > 1 && (out_.back() - out_.front()).norm() <= u_.ct) {
+      out_.pop_back();
+      owner_.pop_back();
     }
   }
 
-  // Outline: walk the base boundary, splicing every child's boundary (with
-  // its relief notches) into its parent's edge.
-  std::vector<Vec2>& out = fp.outline;
-  std::vector<int>& owner = fp.outline_tab;
-  auto push = [&](const Vec2& q, int who) {
-    if (!out.empty() && (out.back() - q).norm() <= ct) {
-      owner.back() = who;
+ private:
+  void push(const Vec2& q, int who) {
+    if (!out_.empty() && (out_.back() - q).norm() <= u_.ct) {
+      owner_.back() = who;
       return;
     }
-    out.push_back(q);
-    owner.push_back(who);
-  };
-  std::function<void(int, int)> emit_edge;
-  auto emit_tab = [&](int c) {
-    const std::vector<Vec2>& Q = fp.pieces[c].polygon;
+    out_.push_back(q);
+    owner_.push_back(who);
+  }
+
+  // A tab's free edges 1..3 (edge 0 is its root), with its own children on them.
+  void tab(int c) {
+    const std::vector<Vec2>& Q = u_.fp.pieces[c].polygon;
     for (int k = 1; k <= 3; ++k) {
-      emit_edge(c, k);
+      edge(c, k);
       if (k < 3) push(Q[k + 1], c);
     }
-  };
-  emit_edge = [&](int p, int k) {
-    const auto& list = on_edge[p][k];
+  }
+
+  void edge(int p, int k) {
+    const auto& list = u_.on_edge[p][k];
+    const double wr = u_.wr;
     for (size_t idx = 0; idx < list.size(); ++idx) {
       const int c = list[idx];
-      const Junction& j = junction[c];
+      const Junction& j = u_.junction[c];
       const Vec2 J0 = j.S + j.a0 * j.E, J1 = j.S + j.a1 * j.E;
       if (j.start_relief) {
         const Vec2 r1 = J0 - wr * j.E;
@@ -238,29 +290,47 @@ FlatPattern unfold(const Part& part, const SheetSpec& spec, const FlatPatternOpt
         push(J0 - j.depth * j.V, p);
       }
       push(J0, c);
-      emit_tab(c);
+      tab(c);
       push(J1, p);
       if (j.end_relief) {
         push(J1 - j.depth * j.V, p);
         push(J1 + wr * j.E - j.depth * j.V, p);
         push(J1 + wr * j.E, p);
       } else if (j.merged_with_next) {
-        const Junction& nj = junction[list[idx + 1]];
+        const Junction& nj = u_.junction[list[idx + 1]];
         const double d = std::max(j.depth, nj.depth);
         push(J1 - d * j.V, p);
         push(nj.S + nj.a0 * nj.E - d * j.V, p);
       }
     }
-  };
-  for (int k = 0; k < static_cast<int>(base.outline.size()); ++k) {
-    push(base.outline[k], 0);
-    emit_edge(0, k);
   }
-  if (out.size() > 1 && (out.back() - out.front()).norm() <= ct) {
-    out.pop_back();
-    owner.pop_back();
-  }
-  return fp;
+
+  const Unfolding& u_;
+  std::vector<Vec2>& out_;
+  std::vector<int>& owner_;
+};
+
+}  // namespace
+
+FlatPattern unfold(const Part& part, const SheetSpec& spec, const FlatPatternOptions& opt) {
+  Unfolding u;
+  u.fp.frame = part.base;
+  if (part.size() == 0) return u.fp;
+  u.wr = opt.relief_width > 0 ? opt.relief_width : spec.thickness;
+  u.ct = opt.corner_tolerance;
+  u.kerf = spec.manufacturing.kerf;
+
+  const RealiseOptions ro = unbent_options(part, spec);
+  lay_out_tabs(u, part, spec, realise(part, ro), ro.shifts);
+  sort_children_along_edges(u, part);
+  for (int p = 0; p < part.size(); ++p)
+    for (const auto& list : u.on_edge[p])
+      for (size_t k = 0; k < list.size(); ++k) {
+        decide_reliefs(u, list, k);
+        cut_reliefs_of(u, p, list, k);
+      }
+  OutlineTracer(u).trace(part.base);
+  return std::move(u.fp);
 }
 
 bool unfolds_cleanly(const Part& part, const SheetSpec& spec) {
