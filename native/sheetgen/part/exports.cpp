@@ -65,6 +65,12 @@ class Dxf {
   void pair(int code, const std::string& value) { s_ << code << "\n" << value << "\n"; }
   void pair(int code, int value) { pair(code, std::to_string(value)); }
   void num(int code, double value) { pair(code, f6(value)); }
+  // A point's codes: x at `code`, y at code + 10, z (always 0) at code + 20.
+  void point(int code, const Vec2& p) {
+    num(code, p.x());
+    num(code + 10, p.y());
+    num(code + 20, 0);
+  }
   std::string str() const { return s_.str(); }
 
  private:
@@ -98,15 +104,13 @@ Vec2 note_place(const RivetHole& h, double text_height) {
   return h.flat + Vec2(0.5 * h.diameter + 0.5 * text_height, 0.5 * h.diameter + 0.5 * text_height);
 }
 
-}  // namespace
+// DXF drawing coordinates: mm from the lower-left corner of the outline.
+struct DxfFrame {
+  Vec2 org;  // m, flat frame
+  Vec2 operator()(const Vec2& q) const { return Vec2(1e3 * (q - org)); }
+};
 
-std::string flat_pattern_dxf(const FlatPattern& flat, const DrawingOptions& o, const std::vector<RivetHole>& holes) {
-  const Vec2 org = drawing_origin(flat);
-  auto X = [&](const Vec2& q) { return Vec2(1e3 * (q - org)); };  // mm
-  const Vec2 size = 1e3 * drawing_size(flat);
-  const std::vector<int> number = bend_numbers(flat, o.bend_order);
-  Dxf d;
-  // HEADER
+void dxf_header(Dxf& d, const Vec2& size_mm) {
   d.pair(0, "SECTION");
   d.pair(2, "HEADER");
   d.pair(9, "$ACADVER");
@@ -114,17 +118,17 @@ std::string flat_pattern_dxf(const FlatPattern& flat, const DrawingOptions& o, c
   d.pair(9, "$INSUNITS");
   d.pair(70, 4);  // millimetres
   d.pair(9, "$INSBASE");
-  d.num(10, 0); d.num(20, 0); d.num(30, 0);
+  d.point(10, Vec2::Zero());
   d.pair(9, "$EXTMIN");
-  d.num(10, 0); d.num(20, 0); d.num(30, 0);
+  d.point(10, Vec2::Zero());
   d.pair(9, "$EXTMAX");
-  d.num(10, size.x()); d.num(20, size.y()); d.num(30, 0);
+  d.point(10, size_mm);
   d.pair(9, "$LTSCALE");
   d.num(40, 1.0);
   d.pair(0, "ENDSEC");
-  // TABLES: LTYPE, LAYER, STYLE
-  d.pair(0, "SECTION");
-  d.pair(2, "TABLES");
+}
+
+void dxf_line_types(Dxf& d, const DrawingOptions& o) {
   d.pair(0, "TABLE");
   d.pair(2, "LTYPE");
   d.pair(70, 2);
@@ -145,6 +149,9 @@ std::string flat_pattern_dxf(const FlatPattern& flat, const DrawingOptions& o, c
   d.num(49, 1e3 * o.dash);
   d.num(49, -1e3 * o.gap);
   d.pair(0, "ENDTAB");
+}
+
+void dxf_layers(Dxf& d) {
   struct Layer { const char* name; int color; const char* ltype; };
   const Layer layers[] = {{"0", 7, "CONTINUOUS"}, {"CUT", 7, "CONTINUOUS"}, {"BEND_UP", 1, "DASHED"},
                           {"BEND_DOWN", 5, "DASHED"}, {"RIVET_HOLES", 6, "CONTINUOUS"},
@@ -160,6 +167,9 @@ std::string flat_pattern_dxf(const FlatPattern& flat, const DrawingOptions& o, c
     d.pair(6, l.ltype);
   }
   d.pair(0, "ENDTAB");
+}
+
+void dxf_text_style(Dxf& d, const DrawingOptions& o) {
   d.pair(0, "TABLE");
   d.pair(2, "STYLE");
   d.pair(70, 1);
@@ -174,39 +184,52 @@ std::string flat_pattern_dxf(const FlatPattern& flat, const DrawingOptions& o, c
   d.pair(3, "txt");
   d.pair(4, "");
   d.pair(0, "ENDTAB");
+}
+
+void dxf_tables(Dxf& d, const DrawingOptions& o) {
+  d.pair(0, "SECTION");
+  d.pair(2, "TABLES");
+  dxf_line_types(d, o);
+  dxf_layers(d);
+  dxf_text_style(d, o);
   d.pair(0, "ENDSEC");
-  // BLOCKS (empty; some R12 readers expect the section)
+}
+
+// Empty, but some R12 readers expect the section.
+void dxf_blocks(Dxf& d) {
   d.pair(0, "SECTION");
   d.pair(2, "BLOCKS");
   d.pair(0, "ENDSEC");
-  // ENTITIES
-  d.pair(0, "SECTION");
-  d.pair(2, "ENTITIES");
-  auto polyline = [&](const std::vector<Vec2>& pts, const char* layer) {
-    d.pair(0, "POLYLINE");
+}
+
+void dxf_closed_polyline(Dxf& d, const DxfFrame& X, const std::vector<Vec2>& pts, const char* layer) {
+  d.pair(0, "POLYLINE");
+  d.pair(8, layer);
+  d.pair(66, 1);
+  d.point(10, Vec2::Zero());
+  d.pair(70, 1);  // closed
+  for (const Vec2& q : pts) {
+    d.pair(0, "VERTEX");
     d.pair(8, layer);
-    d.pair(66, 1);
-    d.num(10, 0); d.num(20, 0); d.num(30, 0);
-    d.pair(70, 1);  // closed
-    for (const Vec2& q : pts) {
-      const Vec2 p = X(q);
-      d.pair(0, "VERTEX");
-      d.pair(8, layer);
-      d.num(10, p.x()); d.num(20, p.y()); d.num(30, 0);
-    }
-    d.pair(0, "SEQEND");
-    d.pair(8, layer);
-  };
-  polyline(flat.outline, "CUT");
+    d.point(10, X(q));
+  }
+  d.pair(0, "SEQEND");
+  d.pair(8, layer);
+}
+
+void dxf_bend_lines(Dxf& d, const DxfFrame& X, const FlatPattern& flat) {
   for (const FlatBend& b : flat.bends) {
     const char* layer = b.direction == BendDirection::Up ? "BEND_UP" : "BEND_DOWN";
-    const Vec2 a = X(b.a), c = X(b.b);
     d.pair(0, "LINE");
     d.pair(8, layer);
     d.pair(6, "DASHED");
-    d.num(10, a.x()); d.num(20, a.y()); d.num(30, 0);
-    d.num(11, c.x()); d.num(21, c.y()); d.num(31, 0);
+    d.point(10, X(b.a));
+    d.point(11, X(b.b));
   }
+}
+
+void dxf_bend_labels(Dxf& d, const DxfFrame& X, const FlatPattern& flat, const DrawingOptions& o) {
+  const std::vector<int> number = bend_numbers(flat, o.bend_order);
   for (const FlatBend& b : flat.bends) {
     Vec2 at;
     double rot;
@@ -214,31 +237,52 @@ std::string flat_pattern_dxf(const FlatPattern& flat, const DrawingOptions& o, c
     const Vec2 p = X(at);
     d.pair(0, "TEXT");
     d.pair(8, "ANNOTATION");
-    d.num(10, p.x()); d.num(20, p.y()); d.num(30, 0);
+    d.point(10, p);
     d.num(40, 1e3 * o.text_height);
     d.pair(1, label(b, number[b.tab]) + "%%d");
     d.num(50, rot);
     d.pair(7, "STANDARD");
     d.pair(72, 1);  // centred on the alignment point
-    d.num(11, p.x()); d.num(21, p.y()); d.num(31, 0);
+    d.point(11, p);
   }
+}
+
+void dxf_holes(Dxf& d, const DxfFrame& X, const std::vector<RivetHole>& holes) {
   for (const RivetHole& h : holes) {
-    const Vec2 c = X(h.flat);
     d.pair(0, "CIRCLE");
     d.pair(8, h.kind == RivetKind::Self ? "SELF_RIVET_HOLES" : "RIVET_HOLES");
-    d.num(10, c.x()); d.num(20, c.y()); d.num(30, 0);
+    d.point(10, X(h.flat));
     d.num(40, 0.5e3 * h.diameter);
   }
+}
+
+void dxf_self_rivet_notes(Dxf& d, const DxfFrame& X, const std::vector<RivetHole>& holes, const DrawingOptions& o) {
   for (const RivetHole& h : holes) {
     if (h.kind != RivetKind::Self) continue;
-    const Vec2 p = X(note_place(h, o.text_height));
     d.pair(0, "TEXT");
     d.pair(8, "ANNOTATION");
-    d.num(10, p.x()); d.num(20, p.y()); d.num(30, 0);
+    d.point(10, X(note_place(h, o.text_height)));
     d.num(40, 1e3 * o.text_height);
     d.pair(1, self_rivet_note(h));
     d.pair(7, "STANDARD");
   }
+}
+
+}  // namespace
+
+std::string flat_pattern_dxf(const FlatPattern& flat, const DrawingOptions& o, const std::vector<RivetHole>& holes) {
+  const DxfFrame X{drawing_origin(flat)};
+  Dxf d;
+  dxf_header(d, 1e3 * drawing_size(flat));
+  dxf_tables(d, o);
+  dxf_blocks(d);
+  d.pair(0, "SECTION");
+  d.pair(2, "ENTITIES");
+  dxf_closed_polyline(d, X, flat.outline, "CUT");
+  dxf_bend_lines(d, X, flat);
+  dxf_bend_labels(d, X, flat, o);
+  dxf_holes(d, X, holes);
+  dxf_self_rivet_notes(d, X, holes, o);
   d.pair(0, "ENDSEC");
   d.pair(0, "EOF");
   return d.str();
