@@ -190,145 +190,217 @@ class BinaryCursor {
   const std::string& name_;
 };
 
-}  // namespace
+bool host_is_little_endian() {
+  const uint16_t probe = 1;
+  unsigned char first_byte;
+  std::memcpy(&first_byte, &probe, 1);
+  return first_byte == 1;
+}
 
-TriangleMesh parse_ply(const std::string& bytes, const std::string& name) {
-  // Header: lines up to "end_header".
-  size_t pos = 0;
-  auto next_line = [&](std::string& out) -> bool {
-    if (pos >= bytes.size()) return false;
-    size_t nl = bytes.find('\n', pos);
-    if (nl == std::string::npos) nl = bytes.size();
-    out = bytes.substr(pos, nl - pos);
+// The header's lines; a CRLF file's '\r' is dropped.
+class HeaderLines {
+ public:
+  explicit HeaderLines(const std::string& bytes) : bytes_(bytes) {}
+  bool next(std::string& out) {
+    if (pos_ >= bytes_.size()) return false;
+    size_t nl = bytes_.find('\n', pos_);
+    if (nl == std::string::npos) nl = bytes_.size();
+    out = bytes_.substr(pos_, nl - pos_);
     if (!out.empty() && out.back() == '\r') out.pop_back();
-    pos = nl + 1;
+    pos_ = nl + 1;
     return true;
-  };
-  std::string line;
-  size_t line_no = 1;
-  if (!next_line(line) || line != "ply") throw InputError(name, "line 1", "not a PLY file (first line must be 'ply')");
+  }
+  size_t pos() const { return pos_; }  // byte offset of the next line
+
+ private:
+  const std::string& bytes_;
+  size_t pos_ = 0;
+};
+
+struct PlyHeader {
   std::string format;
   std::vector<PlyElement> elements;
-  bool ended = false;
-  while (next_line(line)) {
+  size_t body = 0;  // byte offset of the data; one past the end when "end_header" is the last line without a newline
+};
+
+// The rest of an "element <name> <count>" line.
+PlyElement parse_element_line(std::istringstream& ls, const std::string& name, size_t line_no) {
+  PlyElement e;
+  long long count = -1;
+  std::string count_tok;
+  if (!(ls >> e.name >> count_tok) || !parse_long(count_tok, count) || count < 0)
+    throw InputError(name, line_field(line_no), "bad element declaration");
+  e.count = static_cast<size_t>(count);
+  return e;
+}
+
+// The rest of a "property <type> <name>" or "property list <count type> <type> <name>" line.
+PlyProperty parse_property_line(std::istringstream& ls, const std::string& name, size_t line_no) {
+  PlyProperty p;
+  std::string t;
+  ls >> t;
+  if (t == "list") {
+    std::string ct, it;
+    if (!(ls >> ct >> it >> p.name) || !ply_type(ct, p.count_type) || !ply_type(it, p.type))
+      throw InputError(name, line_field(line_no), "bad list property");
+    p.is_list = true;
+  } else if (!ply_type(t, p.type) || !(ls >> p.name)) {
+    throw InputError(name, line_field(line_no), "unknown property type '" + t + "'");
+  }
+  return p;
+}
+
+// Header: lines up to "end_header".
+PlyHeader parse_ply_header(const std::string& bytes, const std::string& name) {
+  HeaderLines lines(bytes);
+  std::string line;
+  size_t line_no = 1;
+  if (!lines.next(line) || line != "ply") throw InputError(name, "line 1", "not a PLY file (first line must be 'ply')");
+  PlyHeader h;
+  while (lines.next(line)) {
     ++line_no;
     std::istringstream ls(line);
     std::string tag;
     if (!(ls >> tag) || tag == "comment" || tag == "obj_info") continue;
     if (tag == "format") {
-      ls >> format;
+      ls >> h.format;
     } else if (tag == "element") {
-      PlyElement e;
-      long long count = -1;
-      std::string count_tok;
-      if (!(ls >> e.name >> count_tok) || !parse_long(count_tok, count) || count < 0)
-        throw InputError(name, line_field(line_no), "bad element declaration");
-      e.count = static_cast<size_t>(count);
-      elements.push_back(e);
+      h.elements.push_back(parse_element_line(ls, name, line_no));
     } else if (tag == "property") {
-      if (elements.empty()) throw InputError(name, line_field(line_no), "property before any element");
-      PlyProperty p;
-      std::string t;
-      ls >> t;
-      if (t == "list") {
-        std::string ct, it;
-        if (!(ls >> ct >> it >> p.name) || !ply_type(ct, p.count_type) || !ply_type(it, p.type))
-          throw InputError(name, line_field(line_no), "bad list property");
-        p.is_list = true;
-      } else if (!ply_type(t, p.type) || !(ls >> p.name)) {
-        throw InputError(name, line_field(line_no), "unknown property type '" + t + "'");
-      }
-      elements.back().properties.push_back(p);
+      if (h.elements.empty()) throw InputError(name, line_field(line_no), "property before any element");
+      h.elements.back().properties.push_back(parse_property_line(ls, name, line_no));
     } else if (tag == "end_header") {
-      ended = true;
-      break;
+      h.body = lines.pos();
+      return h;
     } else {
       throw InputError(name, line_field(line_no), "unexpected header line '" + tag + "'");
     }
   }
-  if (!ended) throw InputError(name, "header", "no end_header (truncated PLY)");
-  const bool ascii = format == "ascii";
-  const bool little = format == "binary_little_endian", big = format == "binary_big_endian";
-  if (!ascii && !little && !big) throw InputError(name, "header", "unknown PLY format '" + format + "'");
+  throw InputError(name, "header", "no end_header (truncated PLY)");
+}
 
-  // Guard against absurd counts before allocating (a hostile header).
-  for (const auto& e : elements) {
+// Guards against absurd counts before allocating (a hostile header).
+void check_declared_counts(const PlyHeader& h, const std::string& bytes, bool ascii, const std::string& name) {
+  for (const auto& e : h.elements) {
     size_t min_bytes = 0;
     for (const auto& p : e.properties) min_bytes += p.is_list ? ply_size(p.count_type) : (ascii ? 1 : ply_size(p.type));
-    if (min_bytes > 0 && e.count > (bytes.size() - std::min(pos, bytes.size())) / min_bytes + 1)
+    if (min_bytes > 0 && e.count > (bytes.size() - std::min(h.body, bytes.size())) / min_bytes + 1)
       throw InputError(name, "element " + e.name, "declares " + std::to_string(e.count) + " entries but the file is too short (truncated PLY)");
   }
+}
 
-  TriangleMesh mesh;
-  // pos is one past the end when "end_header" is the last line without a newline.
-  std::istringstream ascii_in(ascii ? bytes.substr(std::min(pos, bytes.size())) : std::string());
-  const uint16_t probe = 1;
-  unsigned char first_byte;
-  std::memcpy(&first_byte, &probe, 1);
-  const bool host_little = first_byte == 1;
-  BinaryCursor cursor(bytes, pos, (big && host_little) || (little && !host_little), name);
-  auto read_value = [&](PlyType t, const std::string& where) -> double {
-    if (!ascii) return cursor.read(t, where);
+// The body's values in file order, from ASCII tokens or binary.
+class PlyValues {
+ public:
+  PlyValues(const std::string& bytes, size_t body, bool ascii, bool swap, const std::string& name)
+      : ascii_(ascii),
+        ascii_in_(ascii ? bytes.substr(std::min(body, bytes.size())) : std::string()),
+        cursor_(bytes, body, swap, name),
+        name_(name) {}
+
+  double read(PlyType t, const std::string& where) {
+    if (!ascii_) return cursor_.read(t, where);
     std::string tok;
     double v;
-    if (!(ascii_in >> tok)) throw InputError(name, where, "file ends early (truncated PLY)");
-    if (!parse_double(tok, v)) throw InputError(name, where, "'" + tok + "' is not a number");
+    if (!(ascii_in_ >> tok)) throw InputError(name_, where, "file ends early (truncated PLY)");
+    if (!parse_double(tok, v)) throw InputError(name_, where, "'" + tok + "' is not a number");
     return v;
-  };
+  }
 
-  for (const auto& e : elements) {
-    const bool is_vertex = e.name == "vertex", is_face = e.name == "face";
-    int ix = -1, iy = -1, iz = -1;
+ private:
+  bool ascii_;
+  std::istringstream ascii_in_;
+  BinaryCursor cursor_;
+  const std::string& name_;
+};
+
+struct XyzColumns {
+  int x = -1, y = -1, z = -1;  // property indices, -1 when absent
+};
+
+XyzColumns xyz_columns(const PlyElement& e) {
+  XyzColumns c;
+  for (int k = 0; k < static_cast<int>(e.properties.size()); ++k) {
+    if (e.properties[k].name == "x") c.x = k;
+    if (e.properties[k].name == "y") c.y = k;
+    if (e.properties[k].name == "z") c.z = k;
+  }
+  return c;
+}
+
+bool is_face_vertex_list(const PlyElement& e, const PlyProperty& prop) {
+  return e.name == "face" && (prop.name == "vertex_indices" || prop.name == "vertex_index");
+}
+
+// Checked before the cast: a uint 4e9, a float 1e30 or NaN would not fit an int.
+int vertex_index(double idx, const std::string& where, const std::string& name) {
+  if (!(idx >= 0 && idx <= std::numeric_limits<int>::max() && idx == std::floor(idx))) {
+    std::ostringstream v;
+    v.precision(17);
+    v << idx;
+    throw InputError(name, where, "vertex index " + v.str() + " is not a valid index");
+  }
+  return static_cast<int>(idx);
+}
+
+// One list property of one entry; a face's vertex list becomes a fan of triangles.
+void read_list(PlyValues& in, const PlyElement& e, const PlyProperty& prop, const std::string& where, TriangleMesh& mesh,
+               const std::string& name) {
+  const bool vertex_list = is_face_vertex_list(e, prop);
+  double n = in.read(prop.count_type, where);
+  if (!(n >= 0) || n > 1e6) throw InputError(name, where, "bad list length");
+  std::vector<int> poly;
+  for (int j = 0; j < static_cast<int>(n); ++j) {
+    double idx = in.read(prop.type, where);
+    if (vertex_list) poly.push_back(vertex_index(idx, where, name));
+  }
+  if (vertex_list) {
+    if (poly.size() < 3) throw InputError(name, where, "face has fewer than 3 vertices");
+    for (size_t j = 1; j + 1 < poly.size(); ++j) mesh.triangles.push_back({poly[0], poly[j], poly[j + 1]});
+  }
+}
+
+void read_element(PlyValues& in, const PlyElement& e, TriangleMesh& mesh, const std::string& name) {
+  const bool is_vertex = e.name == "vertex";
+  const XyzColumns c = xyz_columns(e);
+  if (is_vertex && (c.x < 0 || c.y < 0 || c.z < 0)) throw InputError(name, "element vertex", "needs x, y and z properties");
+  // An element without properties occupies no bytes: nothing to read, and
+  // looping over a declared count of 2^62 such entries would hang.
+  if (e.properties.empty()) return;
+  if (is_vertex) mesh.vertices.reserve(e.count);
+  for (size_t i = 0; i < e.count; ++i) {
+    const std::string where = e.name + " " + std::to_string(i);
+    Vec3 p = Vec3::Zero();
     for (int k = 0; k < static_cast<int>(e.properties.size()); ++k) {
-      if (e.properties[k].name == "x") ix = k;
-      if (e.properties[k].name == "y") iy = k;
-      if (e.properties[k].name == "z") iz = k;
+      const auto& prop = e.properties[k];
+      if (prop.is_list) {
+        read_list(in, e, prop, where, mesh, name);
+      } else {
+        double v = in.read(prop.type, where);
+        if (k == c.x) p.x() = v;
+        if (k == c.y) p.y() = v;
+        if (k == c.z) p.z() = v;
+      }
     }
-    if (is_vertex && (ix < 0 || iy < 0 || iz < 0)) throw InputError(name, "element vertex", "needs x, y and z properties");
-    // An element without properties occupies no bytes: nothing to read, and
-    // looping over a declared count of 2^62 such entries would hang.
-    if (e.properties.empty()) continue;
-    if (is_vertex) mesh.vertices.reserve(e.count);
-    std::vector<int> poly;
-    for (size_t i = 0; i < e.count; ++i) {
-      const std::string where = e.name + " " + std::to_string(i);
-      Vec3 p = Vec3::Zero();
-      for (int k = 0; k < static_cast<int>(e.properties.size()); ++k) {
-        const auto& prop = e.properties[k];
-        if (prop.is_list) {
-          double n = read_value(prop.count_type, where);
-          if (!(n >= 0) || n > 1e6) throw InputError(name, where, "bad list length");
-          poly.clear();
-          for (int j = 0; j < static_cast<int>(n); ++j) {
-            double idx = read_value(prop.type, where);
-            if (is_face && (prop.name == "vertex_indices" || prop.name == "vertex_index")) {
-              // Checked before the cast: a uint 4e9, a float 1e30 or NaN would not fit an int.
-              if (!(idx >= 0 && idx <= std::numeric_limits<int>::max() && idx == std::floor(idx))) {
-                std::ostringstream v;
-                v.precision(17);
-                v << idx;
-                throw InputError(name, where, "vertex index " + v.str() + " is not a valid index");
-              }
-              poly.push_back(static_cast<int>(idx));
-            }
-          }
-          if (is_face && (prop.name == "vertex_indices" || prop.name == "vertex_index")) {
-            if (poly.size() < 3) throw InputError(name, where, "face has fewer than 3 vertices");
-            for (size_t j = 1; j + 1 < poly.size(); ++j) mesh.triangles.push_back({poly[0], poly[j], poly[j + 1]});
-          }
-        } else {
-          double v = read_value(prop.type, where);
-          if (k == ix) p.x() = v;
-          if (k == iy) p.y() = v;
-          if (k == iz) p.z() = v;
-        }
-      }
-      if (is_vertex) {
-        if (!p.allFinite()) throw InputError(name, where, "vertex coordinate is not finite");
-        mesh.vertices.push_back(p);
-      }
+    if (is_vertex) {
+      if (!p.allFinite()) throw InputError(name, where, "vertex coordinate is not finite");
+      mesh.vertices.push_back(p);
     }
   }
+}
+
+}  // namespace
+
+TriangleMesh parse_ply(const std::string& bytes, const std::string& name) {
+  const PlyHeader header = parse_ply_header(bytes, name);
+  const bool ascii = header.format == "ascii";
+  const bool little = header.format == "binary_little_endian", big = header.format == "binary_big_endian";
+  if (!ascii && !little && !big) throw InputError(name, "header", "unknown PLY format '" + header.format + "'");
+  check_declared_counts(header, bytes, ascii, name);
+  const bool host_little = host_is_little_endian();
+  PlyValues in(bytes, header.body, ascii, (big && host_little) || (little && !host_little), name);
+  TriangleMesh mesh;
+  for (const auto& e : header.elements) read_element(in, e, mesh, name);
   return mesh;
 }
 
