@@ -1,183 +1,110 @@
 #include "sheetgen/fem/delaunay_2d.hpp"
 
+#include <CGAL/Constrained_Delaunay_triangulation_2.h>
+#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+#include <CGAL/Triangulation_face_base_with_info_2.h>
+#include <CGAL/Triangulation_vertex_base_with_info_2.h>
+
 #include <algorithm>
-#include <cmath>
-#include <limits>
 #include <numeric>
+#include <string>
+#include <utility>
 
 #include "sheetgen/fem/fem_error.hpp"
 
 namespace sheetgen {
 namespace {
 
-struct Tri {
-  int v[3];  // counter-clockwise
-  int n[3];  // neighbour across the edge opposite v[i], -1 on the outside
-  bool alive;
-};
+// Exact predicates on double coordinates; the triangulation constructs no
+// new point, so inexact constructions never come into play.
+using Kernel = CGAL::Exact_predicates_inexact_constructions_kernel;
+using VertexBase = CGAL::Triangulation_vertex_base_with_info_2<int, Kernel>;    // info: index into the points
+using InfoFaceBase = CGAL::Triangulation_face_base_with_info_2<bool, Kernel>;  // info: inside the outline
+using FaceBase = CGAL::Constrained_triangulation_face_base_2<Kernel, InfoFaceBase>;
+using Tds = CGAL::Triangulation_data_structure_2<VertexBase, FaceBase>;
+// Crossing outline segments throw instead of getting an intersection point
+// constructed (inexactly); a point exactly on a segment splits it.
+using Cdt = CGAL::Constrained_Delaunay_triangulation_2<Kernel, Tds,
+                                                       CGAL::No_constraint_intersection_requiring_constructions_tag>;
 
-double orient(const Vec2& a, const Vec2& b, const Vec2& c) {
-  return (b.x() - a.x()) * (c.y() - a.y()) - (b.y() - a.y()) * (c.x() - a.x());
+void check_input(const std::vector<Vec2>& points, const std::vector<int>& outline) {
+  if (outline.size() < 3) throw FemError("outline", "needs at least 3 points (got " + std::to_string(outline.size()) + ")");
+  std::vector<char> seen(points.size(), 0);
+  for (int i : outline) {
+    if (i < 0 || i >= static_cast<int>(points.size()))
+      throw FemError("outline", "index " + std::to_string(i) + " is not a point (" + std::to_string(points.size()) +
+                                    " points)");
+    if (seen[i]++) throw FemError("outline", "point " + std::to_string(i) + " appears twice");
+  }
+  for (size_t i = 0; i < points.size(); ++i)
+    if (!points[i].allFinite()) throw FemError("point " + std::to_string(i), "is not finite");
 }
 
-// > 0 when d lies inside the circumcircle of the counter-clockwise (a, b, c).
-double incircle(const Vec2& a, const Vec2& b, const Vec2& c, const Vec2& d) {
-  const double adx = a.x() - d.x(), ady = a.y() - d.y();
-  const double bdx = b.x() - d.x(), bdy = b.y() - d.y();
-  const double cdx = c.x() - d.x(), cdy = c.y() - d.y();
-  const double ad = adx * adx + ady * ady, bd = bdx * bdx + bdy * bdy, cd = cdx * cdx + cdy * cdy;
-  return adx * (bdy * cd - bd * cdy) - ady * (bdx * cd - bd * cdx) + ad * (bdx * cdy - bdy * cdx);
+// CGAL merges equal points into one vertex; name the first pair instead.
+void throw_duplicate(const std::vector<Vec2>& points) {
+  std::vector<int> order(points.size());
+  std::iota(order.begin(), order.end(), 0);
+  auto key = [&](int i) { return std::make_pair(points[i].x(), points[i].y()); };
+  std::sort(order.begin(), order.end(), [&](int a, int b) { return key(a) < key(b) || (key(a) == key(b) && a < b); });
+  for (size_t k = 1; k < order.size(); ++k)
+    if (key(order[k - 1]) == key(order[k]))
+      throw FemError("point " + std::to_string(order[k]), "duplicates point " + std::to_string(order[k - 1]));
+}
+
+// Marks the finite faces inside the outline: those not reachable from the
+// infinite face without crossing a constrained edge.
+void mark_inside(Cdt& cdt) {
+  for (Cdt::Face_handle f : cdt.all_face_handles()) f->info() = true;
+  std::vector<Cdt::Face_handle> stack = {cdt.infinite_face()};
+  cdt.infinite_face()->info() = false;
+  while (!stack.empty()) {
+    const Cdt::Face_handle f = stack.back();
+    stack.pop_back();
+    for (int i = 0; i < 3; ++i) {
+      const Cdt::Face_handle n = f->neighbor(i);
+      if (!n->info() || cdt.is_constrained(Cdt::Edge(f, i))) continue;
+      n->info() = false;
+      stack.push_back(n);
+    }
+  }
 }
 
 }  // namespace
 
-std::vector<std::array<int, 3>> delaunay_triangulation(const std::vector<Vec2>& input) {
-  const int n = static_cast<int>(input.size());
-  if (n < 3) return {};
-  // Normalise to a unit box for conditioning.
-  Vec2 lo = input[0], hi = input[0];
-  for (const Vec2& p : input) {
-    lo = lo.cwiseMin(p);
-    hi = hi.cwiseMax(p);
+PolygonTriangulation triangulate_polygon(const std::vector<Vec2>& points, const std::vector<int>& outline) {
+  check_input(points, outline);
+  std::vector<std::pair<Kernel::Point_2, int>> input;
+  input.reserve(points.size());
+  for (size_t i = 0; i < points.size(); ++i)
+    input.emplace_back(Kernel::Point_2(points[i].x(), points[i].y()), static_cast<int>(i));
+  Cdt cdt;
+  cdt.insert(input.begin(), input.end());  // spatially sorted insertion
+  if (cdt.number_of_vertices() != points.size()) throw_duplicate(points);
+
+  std::vector<Cdt::Vertex_handle> vertex(points.size());
+  for (Cdt::Vertex_handle v : cdt.finite_vertex_handles()) vertex[v->info()] = v;
+  try {
+    for (size_t i = 0; i < outline.size(); ++i)
+      cdt.insert_constraint(vertex[outline[i]], vertex[outline[(i + 1) % outline.size()]]);
+  } catch (const Cdt::Intersection_of_constraints_exception&) {
+    throw FemError("outline", "segments cross (the polygon is not simple)");
   }
-  const Vec2 centre = 0.5 * (lo + hi);
-  const double scale = std::max((hi - lo).maxCoeff(), 1e-300);
-  std::vector<Vec2> p(n + 3);
-  for (int i = 0; i < n; ++i) p[i] = (input[i] - centre) / scale;
-  // Super triangle far outside the unit box.
-  p[n] = Vec2(-1e3, -1e3);
-  p[n + 1] = Vec2(1e3, -1e3);
-  p[n + 2] = Vec2(0, 1e3);
-
-  // Insert in a snake order over a coarse grid so the walk from the last new
-  // triangle is short.
-  const int cells = std::max(1, static_cast<int>(std::sqrt(n / 4.0)));
-  std::vector<int> order(n);
-  std::iota(order.begin(), order.end(), 0);
-  auto cell_key = [&](int i) {
-    const int cy = std::min(cells - 1, static_cast<int>((p[i].y() + 0.5) * cells));
-    int cx = std::min(cells - 1, static_cast<int>((p[i].x() + 0.5) * cells));
-    if (cy % 2) cx = cells - 1 - cx;
-    return static_cast<long long>(cy) * cells + cx;
-  };
-  std::vector<long long> keys(n);
-  for (int i = 0; i < n; ++i) keys[i] = cell_key(i);
-  std::stable_sort(order.begin(), order.end(), [&](int a, int b) { return keys[a] < keys[b]; });
-
-  std::vector<Tri> tris;
-  tris.reserve(2 * static_cast<size_t>(n) + 8);
-  tris.push_back(Tri{{n, n + 1, n + 2}, {-1, -1, -1}, true});
-  std::vector<int> free_slots;
-  std::vector<int> mark;  // visit stamp per triangle
-  int stamp = 0;
-  int last = 0;
-  struct BoundaryEdge {
-    int a, b, outside;
-  };
-  std::vector<int> cavity, stack;
-  std::vector<BoundaryEdge> boundary;
-  std::vector<int> created;
-
-  for (int pi : order) {
-    const Vec2& q = p[pi];
-    // Walk to the triangle containing q. The edge tried first rotates with
-    // the step: a walk that always tries edges in the same order can cycle
-    // (it is only guaranteed to end on a Delaunay triangulation with exact
-    // predicates, and ours are floating point; seen on a real part, where
-    // every step had a way on and the walk came back). Should it still not
-    // end, the triangle that holds q best is found by a scan of all of them.
-    int t = last;
-    const int max_steps = 4 * static_cast<int>(tris.size()) + 16;
-    for (int steps = 0;; ++steps) {
-      if (steps > max_steps) {
-        double best = -std::numeric_limits<double>::infinity();
-        for (int c = 0; c < static_cast<int>(tris.size()); ++c) {
-          if (!tris[c].alive) continue;
-          double worst = std::numeric_limits<double>::infinity();
-          for (int i = 0; i < 3; ++i) worst = std::min(worst, orient(p[tris[c].v[(i + 1) % 3]], p[tris[c].v[(i + 2) % 3]], q));
-          if (worst > best) best = worst, t = c;
-        }
-        break;
-      }
-      const Tri& T = tris[t];
-      int next = -1;
-      for (int k = 0; k < 3; ++k) {
-        const int i = (k + steps) % 3;
-        if (orient(p[T.v[(i + 1) % 3]], p[T.v[(i + 2) % 3]], q) < 0) {
-          next = T.n[i];
-          break;
-        }
-      }
-      if (next < 0) break;
-      t = next;
-    }
-    // Cavity: triangles whose circumcircle holds q, grown from t.
-    ++stamp;
-    mark.resize(tris.size(), 0);
-    cavity.clear();
-    boundary.clear();
-    stack.assign(1, t);
-    mark[t] = stamp;
-    while (!stack.empty()) {
-      const int c = stack.back();
-      stack.pop_back();
-      cavity.push_back(c);
-      for (int i = 0; i < 3; ++i) {
-        const int nb = tris[c].n[i];
-        const int a = tris[c].v[(i + 1) % 3], b = tris[c].v[(i + 2) % 3];
-        if (nb >= 0 && mark[nb] == stamp) continue;
-        if (nb >= 0 && incircle(p[tris[nb].v[0]], p[tris[nb].v[1]], p[tris[nb].v[2]], q) > 0) {
-          mark[nb] = stamp;
-          stack.push_back(nb);
-        } else {
-          boundary.push_back({a, b, nb});
-        }
-      }
-    }
-    for (const BoundaryEdge& e : boundary)
-      if (orient(p[e.a], p[e.b], q) <= 0)
-        throw FemError("mesher", "Delaunay cavity is not star-shaped (duplicate or nearly coincident points)");
-    for (int c : cavity) {
-      tris[c].alive = false;
-      free_slots.push_back(c);
-    }
-    // Fan the cavity boundary to q.
-    created.clear();
-    for (const BoundaryEdge& e : boundary) {
-      int id;
-      if (!free_slots.empty()) {
-        id = free_slots.back();
-        free_slots.pop_back();
-      } else {
-        id = static_cast<int>(tris.size());
-        tris.push_back(Tri{});
-      }
-      tris[id] = Tri{{e.a, e.b, pi}, {-1, -1, e.outside}, true};
-      // Re-point the outside neighbour by the shared edge, not by the old id:
-      // a freed slot may already hold one of the new triangles.
-      if (e.outside >= 0)
-        for (int j = 0; j < 3; ++j)
-          if (tris[e.outside].v[j] != e.a && tris[e.outside].v[j] != e.b) tris[e.outside].n[j] = id;
-      created.push_back(id);
-    }
-    // Link the new triangles to each other: the edge (b, q) of the triangle on
-    // boundary edge (a, b) is shared with the triangle on edge (b, c).
-    for (int x : created)
-      for (int y : created) {
-        if (x == y) continue;
-        if (tris[x].v[1] == tris[y].v[0]) {  // x = (a, b, q), y = (b, c, q)
-          tris[x].n[0] = y;                  // opposite a: edge (b, q)
-          tris[y].n[1] = x;                  // opposite b: edge (q, b)
-        }
-      }
-    last = created.front();
-    if (mark.size() < tris.size()) mark.resize(tris.size(), 0);
+  PolygonTriangulation out;
+  if (cdt.dimension() < 2) {  // all points on one line: no triangle
+    out.unused_points.resize(points.size());
+    std::iota(out.unused_points.begin(), out.unused_points.end(), 0);
+    return out;
   }
-
-  std::vector<std::array<int, 3>> out;
-  out.reserve(2 * static_cast<size_t>(n));
-  for (const Tri& T : tris)
-    if (T.alive && T.v[0] < n && T.v[1] < n && T.v[2] < n) out.push_back({T.v[0], T.v[1], T.v[2]});
+  mark_inside(cdt);
+  std::vector<char> used(points.size(), 0);
+  for (Cdt::Face_handle f : cdt.finite_face_handles()) {
+    if (!f->info()) continue;
+    const std::array<int, 3> t = {f->vertex(0)->info(), f->vertex(1)->info(), f->vertex(2)->info()};
+    for (int v : t) used[v] = 1;
+    out.triangles.push_back(t);
+  }
+  for (size_t i = 0; i < points.size(); ++i)
+    if (!used[i]) out.unused_points.push_back(static_cast<int>(i));
   return out;
 }
 

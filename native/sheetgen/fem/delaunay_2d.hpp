@@ -1,8 +1,9 @@
 #pragma once
-// 2-D Delaunay triangulation (Bowyer-Watson with triangle adjacency and a
-// walking point location), the kernel of plate_mesher. The convex hull of the
-// points is triangulated; hull points that are collinear stay on the hull, so
-// the boundary of a convex polygon sampled along its edges is kept edge by edge.
+// The 2-D kernel of plate_mesher (docs/fem.md "Mesher"): the constrained
+// Delaunay triangulation of one polygon with points inside it. CGAL's
+// Constrained_Delaunay_triangulation_2 with exact predicates does the work;
+// delaunay_2d.cpp is the only file that includes CGAL (docs/code-style.md 5),
+// the rest of the code sees Vec2 and index triples.
 #include <array>
 #include <vector>
 
@@ -10,12 +11,21 @@
 
 namespace sheetgen {
 
-// Triangles (counter-clockwise) of the Delaunay triangulation of `points`
-// (#P, any unit). Deterministic. Cocircular points are handled but any of
-// their valid triangulations may come out; a caller that wants a clean choice
-// perturbs them first (plate_mesher does). Duplicate points are an error
-// (FemError). Exactly collinear hull points give no triangle; hull points
-// inside the hull by round-off give slivers the caller may drop.
-std::vector<std::array<int, 3>> delaunay_triangulation(const std::vector<Vec2>& points);
+struct PolygonTriangulation {
+  std::vector<std::array<int, 3>> triangles;  // #T, counter-clockwise, indices into the points; all inside the outline
+  std::vector<int> unused_points;             // ascending: points in no triangle (outside the outline)
+};
+
+// Triangulates the simple polygon `outline` (indices into `points`, in order
+// around it, either orientation; #P points, any unit) with every point inside
+// it as a vertex. Each outline segment is an edge of the result, split where
+// a point lies exactly on it; apart from that the triangulation is Delaunay.
+// Orientation and in-circle decisions are exact for the given doubles, so no
+// triangle is inverted or flat and the triangles tile the outline exactly.
+// Deterministic: exactly cocircular points are resolved by insertion order
+// (CGAL's spatial sort, with a fixed seed). Throws FemError for fewer than 3
+// outline points, an outline index out of range or repeated, a non-finite or
+// duplicate point, or outline segments that cross.
+PolygonTriangulation triangulate_polygon(const std::vector<Vec2>& points, const std::vector<int>& outline);
 
 }  // namespace sheetgen

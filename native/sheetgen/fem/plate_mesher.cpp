@@ -2,10 +2,12 @@
 
 #include <algorithm>
 #include <array>
-#include <limits>
 #include <cmath>
 #include <cstdint>
+#include <limits>
+#include <numeric>
 #include <sstream>
+#include <string>
 #include <unordered_map>
 #include <utility>
 
@@ -316,7 +318,6 @@ PlateMesh mesh_plates(const std::vector<std::vector<Vec3>>& polygons, const std:
     // Boundary: each edge split at every vertex of any polygon lying on it.
     std::vector<Vec3> pts3;      // the points to triangulate, 3-D
     std::vector<int> fixed_3d;   // 1 for boundary and fixed points (not smoothed)
-    std::vector<Vec2> tangent;   // tie-breaking direction: along the edge for boundary points
     // Boundary points closer than `merge` are one (see `snapped` above): a
     // corner of a neighbouring tab a fraction of a micrometre from this tab's
     // corner would otherwise make a sliver element that CalculiX cannot give a
@@ -346,7 +347,6 @@ PlateMesh mesh_plates(const std::vector<std::vector<Vec3>>& polygons, const std:
         for (const Vec3& p : field.divide(uniq[s].second, uniq[s + 1].second)) {
           pts3.push_back(p);
           fixed_3d.push_back(1);
-          tangent.push_back((poly2[(i + 1) % nv] - poly2[i]).normalized());
         }
       }
     }
@@ -362,7 +362,6 @@ PlateMesh mesh_plates(const std::vector<std::vector<Vec3>>& polygons, const std:
         fixed2.push_back(q2);
         pts3.push_back(f.to3d(q2));
         fixed_3d.push_back(1);
-        tangent.push_back(Vec2::Zero());
       }
     // Around each fold end near this polygon's plane: rings of points spaced
     // by the local size, each kept at least half its size from the boundary,
@@ -394,7 +393,6 @@ PlateMesh mesh_plates(const std::vector<std::vector<Vec3>>& polygons, const std:
           graded2.push_back(q);
           pts3.push_back(q3);
           fixed_3d.push_back(1);
-          tangent.push_back(Vec2::Zero());
         }
       }
     }
@@ -423,25 +421,29 @@ PlateMesh mesh_plates(const std::vector<std::vector<Vec3>>& polygons, const std:
         }
         pts3.push_back(f.to3d(q));
         fixed_3d.push_back(0);
-        tangent.push_back(Vec2::Zero());
       }
 
     std::vector<Vec2> pts2(pts3.size());
     for (size_t i = 0; i < pts3.size(); ++i) pts2[i] = f.to2d(pts3[i]);
-    // Lattices and evenly split edges are full of cocircular quadruples; a
-    // deterministic perturbation of 1e-7 h (along the edge for boundary
-    // points, so they stay on it) makes the Delaunay choice clean. It only
-    // steers connectivity: nodes keep their exact positions.
-    std::uint64_t state = 0x9E3779B97F4A7C15ull + k;
-    auto jitter = [&state, h]() {
-      state = state * 6364136223846793005ull + 1442695040888963407ull;
-      return (static_cast<double>(state >> 11) / 9007199254740992.0 - 0.5) * 1e-7 * h;
-    };
+    // The constrained Delaunay triangulation of the points inside the
+    // boundary (delaunay_2d.hpp): exact predicates, so cocircular points need
+    // no jitter and no sliver outside the boundary is made.
+    std::vector<int> outline(n_boundary);
+    std::iota(outline.begin(), outline.end(), 0);
     auto triangulate = [&]() {
-      std::vector<Vec2> dt(pts2.size());
-      for (size_t i = 0; i < pts2.size(); ++i)
-        dt[i] = pts2[i] + (tangent[i].squaredNorm() > 0 ? Vec2(tangent[i] * jitter()) : Vec2(jitter(), jitter()));
-      return delaunay_triangulation(dt);
+      PolygonTriangulation t;
+      try {
+        t = triangulate_polygon(pts2, outline);
+      } catch (const FemError& e) {
+        throw FemError(polygon_name(k), "triangulation: " + std::string(e.what()));
+      }
+      if (!t.unused_points.empty()) {
+        const size_t i = t.unused_points.front();
+        throw FemError(polygon_name(k), i >= n_boundary && i < n_boundary + fixed2.size()
+                                            ? "a fixed (rivet) point lies outside the polygon"
+                                            : "mesh point " + std::to_string(i) + " lies outside the outline");
+      }
+      return t.triangles;
     };
     std::vector<std::array<int, 3>> tris = triangulate();
     for (int pass = 0; pass < options.smoothing_passes; ++pass) {
@@ -466,18 +468,9 @@ PlateMesh mesh_plates(const std::vector<std::vector<Vec3>>& polygons, const std:
     for (const auto& t : tris) {
       const double area2 = (pts2[t[1]] - pts2[t[0]]).x() * (pts2[t[2]] - pts2[t[0]]).y() -
                            (pts2[t[1]] - pts2[t[0]]).y() * (pts2[t[2]] - pts2[t[0]]).x();
-      // Three points of one straight edge that round-off put a hair off the
-      // line make a zero-area sliver on the hull: drop it (its two short
-      // edges are the boundary we want). A split at a neighbour's snapped
-      // vertex can sit up to `merge` off the line (0.3 um on the gps_receiver
-      // part made a 0.3 um high sliver at h = 2 mm and a singular stiffness),
-      // so the test is the sliver's height against `merge`; three boundary
-      // points of a real corner are about h apart from the line.
-      const double longest = std::max({(pts2[t[1]] - pts2[t[0]]).norm(), (pts2[t[2]] - pts2[t[1]]).norm(),
-                                       (pts2[t[0]] - pts2[t[2]]).norm()});
-      if (std::abs(area2) <= std::max(1e-6 * h * h, merge * longest) &&
-          static_cast<size_t>(std::max({t[0], t[1], t[2]})) < n_boundary)
-        continue;
+      // Exact predicates make every triangle counter-clockwise; one this flat
+      // comes only from a polygon far too thin for h, and would make the
+      // stiffness singular.
       if (area2 <= 1e-10 * h * h) {
         std::ostringstream s;
         s << "the triangulation produced a sliver (area " << 0.5 * area2 << " m^2); polygon too thin for h = " << h

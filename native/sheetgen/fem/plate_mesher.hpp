@@ -4,9 +4,10 @@
 // edge lies on (a sub-segment of) an edge of its parent - T-junctions. Every
 // polygon edge is split at every polygon vertex that lies on it, so the two
 // sides of a shared segment get the same nodes; each piece is sampled at the
-// element size h, an equilateral lattice of spacing h fills the inside, and a
-// 2-D Delaunay triangulation of those points (delaunay_2d.hpp) gives
-// near-equilateral triangles.
+// element size h, an equilateral lattice of spacing h fills the inside, and
+// the constrained Delaunay triangulation of those points inside the sampled
+// outline (delaunay_2d.hpp: CGAL, exact predicates) gives near-equilateral
+// triangles.
 #include <vector>
 
 #include "sheetgen/core/triangle_mesh.hpp"

@@ -7,7 +7,6 @@
 #include <map>
 
 #include "sheetgen/core/geometry.hpp"
-#include "sheetgen/fem/delaunay_2d.hpp"
 #include "sheetgen/fem/fem_error.hpp"
 #include "sheetgen/fem/rivet_layout.hpp"
 
@@ -41,27 +40,6 @@ double min_angle_deg(const PlateMesh& pm) {
       worst = std::min(worst, std::acos(u.normalized().dot(v.normalized())) * 180 / M_PI);
     }
   return worst;
-}
-
-TEST(Delaunay2d, CollinearHullPointsStayOnTheHull) {
-  // A square sampled at 5 points per side plus its centre: the 16 boundary
-  // segments must all be edges, and the triangles must tile the square.
-  std::vector<Vec2> pts;
-  for (int i = 0; i < 4; ++i) pts.emplace_back(i / 4.0, 0);
-  for (int i = 0; i < 4; ++i) pts.emplace_back(1, i / 4.0);
-  for (int i = 0; i < 4; ++i) pts.emplace_back(1 - i / 4.0, 1);
-  for (int i = 0; i < 4; ++i) pts.emplace_back(0, 1 - i / 4.0);
-  pts.emplace_back(0.5, 0.5);
-  const auto tris = delaunay_triangulation(pts);
-  double area = 0;
-  for (const auto& t : tris) {
-    const Vec2 a = pts[t[0]], b = pts[t[1]], c = pts[t[2]];
-    const double A = 0.5 * ((b - a).x() * (c - a).y() - (b - a).y() * (c - a).x());
-    EXPECT_GT(A, 0);
-    area += A;
-  }
-  EXPECT_NEAR(area, 1.0, 1e-12);
-  EXPECT_EQ(tris.size(), 2 * pts.size() - 16 - 2);  // Euler: 2n - h - 2 with h = 16 hull points
 }
 
 TEST(PlateMesher, SingleRectangleIsAreaExactOrientedAndWellShaped) {
@@ -275,6 +253,122 @@ TEST(PlateMesher, SkewedTrapezoidTabsStayConformingAndWellShaped) {
   std::printf("skewed tabs: %zu triangles, h = %.2f mm, min angle %.1f deg\n", pm.mesh.triangles.size(),
               pm.element_size * 1e3, angle);
   EXPECT_GT(angle, 20.0);
+}
+
+// What a valid conforming mesh of one polygon must satisfy: every triangle
+// of positive area and oriented like the polygon; the polygon's edges
+// covered exactly once by mesh edges, in `pieces[i]` pieces on edge i; the
+// triangles a tiling of a disk (Euler: outline nodes - 2 + 2 x inner nodes).
+void expect_valid_polygon_mesh(const PlateMesh& pm, int k, const Poly& poly, const std::vector<int>& pieces) {
+  Vec3 normal = Vec3::Zero();
+  for (size_t i = 0; i < poly.size(); ++i) normal += poly[i].cross(poly[(i + 1) % poly.size()]);
+  normal.normalize();
+  std::map<std::pair<int, int>, int> uses;  // undirected edge -> triangles of polygon k using it
+  std::map<int, int> nodes;                 // node -> 1 on the outline, 0 inside
+  int triangles = 0, bad = 0;
+  double min_area = 1e30;
+  for (size_t f = 0; f < pm.mesh.triangles.size(); ++f) {
+    if (pm.element_polygon[f] != k) continue;
+    ++triangles;
+    const auto& t = pm.mesh.triangles[f];
+    const Vec3 a = pm.mesh.vertices[t[0]], b = pm.mesh.vertices[t[1]], c = pm.mesh.vertices[t[2]];
+    const double area = 0.5 * (b - a).cross(c - a).dot(normal);
+    if (!(area > 0)) ++bad;
+    min_area = std::min(min_area, area);
+    for (int q = 0; q < 3; ++q) {
+      ++uses[{std::min(t[q], t[(q + 1) % 3]), std::max(t[q], t[(q + 1) % 3])}];
+      nodes[t[q]] = 0;
+    }
+  }
+  EXPECT_EQ(bad, 0) << "polygon " << k << ": triangles of zero or negative area";
+  std::vector<int> found(poly.size(), 0);
+  std::vector<double> covered(poly.size(), 0.0);
+  for (const auto& [edge, n] : uses) {
+    if (n == 2) continue;
+    ASSERT_EQ(n, 1) << "polygon " << k << ": an edge in more than two triangles";
+    const Vec3 a = pm.mesh.vertices[edge.first], b = pm.mesh.vertices[edge.second];
+    int on = -1;
+    for (size_t i = 0; i < poly.size(); ++i)
+      if (on_segment(a, poly[i], poly[(i + 1) % poly.size()]) && on_segment(b, poly[i], poly[(i + 1) % poly.size()]))
+        on = static_cast<int>(i);
+    ASSERT_GE(on, 0) << "polygon " << k << ": a boundary edge off the outline (a hole or a missing triangle)";
+    ++found[on];
+    covered[on] += (b - a).norm();
+    nodes[edge.first] = nodes[edge.second] = 1;
+  }
+  for (size_t i = 0; i < poly.size(); ++i) {
+    const double len = (poly[(i + 1) % poly.size()] - poly[i]).norm();
+    EXPECT_EQ(found[i], pieces[i]) << "polygon " << k << " edge " << i;
+    EXPECT_NEAR(covered[i], len, 1e-12 * len) << "polygon " << k << " edge " << i;
+  }
+  int outline = 0, inner = 0;
+  for (const auto& [node, on] : nodes) (on ? outline : inner) += 1;
+  EXPECT_EQ(triangles, outline - 2 + 2 * inner) << "polygon " << k;
+  std::printf("  polygon %d: %d triangles, %d outline + %d inner nodes, smallest area %.3g m^2\n", k, triangles, outline,
+              inner, min_area);
+}
+
+// Polygons given in a local frame (x, y in the plane, z out of it; m) placed
+// in a skewed plane, so that every coordinate carries round-off and points
+// computed on one edge are only nearly collinear.
+Poly skewed(const Poly& local) {
+  const Eigen::AngleAxisd turn(0.7, Vec3(1, 2, 3).normalized());
+  Poly out;
+  for (const Vec3& p : local) out.push_back(Vec3(0.1, -0.2, 0.3) + turn * p);
+  return out;
+}
+
+// Outlines that are degenerate for floating-point predicates: many nearly
+// collinear points on a long skewed edge with a T-junction on it, a sliver
+// tab 0.1 mm wide, and a 120-gon whose vertices are nearly on one circle.
+// The floating-point triangulation before CGAL's exact predicates covered
+// the convex hull of each polygon's points and relied on a jitter of the
+// points and on dropping slivers by height (docs/fem.md "Mesher"); the
+// constrained triangulation must give each a valid conforming mesh as is.
+TEST(PlateMesher, NearlyDegenerateOutlinesGiveValidConformingMeshes) {
+  PlateMeshOptions opt;
+  opt.grade_fold_ends = false;  // uniform pieces, counted below
+  {
+    // A 500 x 20 mm strip at h = 1 mm (500 nearly collinear outline points on
+    // each long edge) with a 25 x 30 mm tab bent down from x in [150, 175] mm
+    // of its edge y = 0, whose corners are computed apart from the strip's.
+    const Poly strip = skewed({Vec3(0, 0, 0), Vec3(0.5, 0, 0), Vec3(0.5, 0.02, 0), Vec3(0, 0.02, 0)});
+    const Poly tab = skewed({Vec3(0.175, 0, 0), Vec3(0.15, 0, 0), Vec3(0.15, 0, -0.03), Vec3(0.175, 0, -0.03)});
+    opt.element_size = 1e-3;
+    const PlateMesh pm = mesh_plates({strip, tab}, {}, opt);
+    std::printf("strip with a T-junction, h = 1 mm:\n");
+    expect_valid_polygon_mesh(pm, 0, strip, {500, 20, 500, 20});  // 150 + 25 + 325 pieces on edge 0
+    expect_valid_polygon_mesh(pm, 1, tab, {25, 30, 25, 30});
+    const SharedSegment s = shared_segment(pm, tab[0], tab[1], 1e-9);
+    EXPECT_EQ(s.shared, 25);
+    EXPECT_EQ(s.one_sided, 0);
+    EXPECT_NEAR(pm.mesh.area(), 0.5 * 0.02 + 0.025 * 0.03, 1e-12 * (0.5 * 0.02 + 0.025 * 0.03));
+  }
+  {
+    // A parallelogram 200 mm long and 0.1 mm wide (aspect 2000), at h = 5 mm:
+    // 40 pieces on each long edge, 1 on each short one, no inner point, so
+    // 82 - 2 = 80 triangles, each 0.1 mm high.
+    const Poly sliver = skewed({Vec3(0, 0, 0), Vec3(0.2, 0, 0), Vec3(0.2003, 1e-4, 0), Vec3(3e-4, 1e-4, 0)});
+    opt.element_size = 5e-3;
+    const PlateMesh pm = mesh_plates({sliver}, {}, opt);
+    std::printf("sliver 200 x 0.1 mm, h = 5 mm:\n");
+    expect_valid_polygon_mesh(pm, 0, sliver, {40, 1, 40, 1});
+    EXPECT_EQ(pm.mesh.triangles.size(), 80u);
+    EXPECT_NEAR(pm.mesh.area(), 0.2 * 1e-4, 1e-12 * 0.2 * 1e-4);
+  }
+  {
+    // A regular 120-gon of radius 40 mm at h = 4 mm: its edges (2.09 mm) are
+    // one piece each; area (n/2) R^2 sin(2 pi / n).
+    Poly local;
+    for (int i = 0; i < 120; ++i) local.emplace_back(0.04 * std::cos(2 * M_PI * i / 120), 0.04 * std::sin(2 * M_PI * i / 120), 0);
+    const Poly disc = skewed(local);
+    opt.element_size = 4e-3;
+    const PlateMesh pm = mesh_plates({disc}, {}, opt);
+    std::printf("120-gon, R = 40 mm, h = 4 mm:\n");
+    expect_valid_polygon_mesh(pm, 0, disc, std::vector<int>(120, 1));
+    const double area = 60 * 0.04 * 0.04 * std::sin(2 * M_PI / 120);
+    EXPECT_NEAR(pm.mesh.area(), area, 1e-12 * area);
+  }
 }
 
 TEST(PlateMesher, DefaultElementSizeRule) {
