@@ -1,6 +1,7 @@
 #include "sheetgen/structure/part_model.hpp"
 
 #include <algorithm>
+#include <array>
 #include <chrono>
 #include <cmath>
 #include <nlohmann/json.hpp>
@@ -64,82 +65,101 @@ std::vector<std::vector<Vec3>> bend_keep_out(const PlateGeometry& g, int k, cons
   return zones;
 }
 
-PartModel build_part_model(const Problem& problem, int load_index, const PlateGeometry& geometry, const PartModelOptions& options) {
+namespace {
+
+void check_part_model_inputs(const Problem& problem, int load_index, const PlateGeometry& geometry) {
   if (load_index < 0 || load_index >= static_cast<int>(problem.loads.size()))
     throw FemError("load", "index " + std::to_string(load_index) + " is out of range");
   const double t = problem.material.thickness;
   if (!(t > 0)) throw FemError("material.thickness", "must be > 0 (got " + std::to_string(t) + " m)");
   if (geometry.polygons.empty()) throw FemError("part", "has no tabs");
-  const Load& load = problem.loads[load_index];
-  const Manufacturing& mf = problem.manufacturing;
+}
 
-  PartModel pm;
-  // Rivets on every flange, as fixed points so each becomes a node (with its footprint ring).
-  std::vector<std::vector<Vec3>> fixed(geometry.polygons.size());
-  const SheetSpec sheet = SheetSpec::from(problem);
+RivetLayoutOptions flange_rivet_options(const Problem& problem) {
+  const Manufacturing& mf = problem.manufacturing;
   RivetLayoutOptions ro;
-  ro.thickness = t;
+  ro.thickness = problem.material.thickness;
   ro.diameter = mf.rivet_diameter;
   ro.edge_distance = mf.rivet_edge_distance;
   ro.pitch = mf.rivet_pitch;
-  std::vector<RivetLayout> layouts(geometry.polygons.size());
+  return ro;
+}
+
+// Every rivet is given to the mesher as fixed points, so each becomes a node
+// (with its footprint ring).
+struct RivetPoints {
+  std::vector<RivetLayout> layouts;      // per polygon; empty where it is no flange
+  std::vector<std::vector<Vec3>> fixed;  // per polygon, m: the flange rivets' points, then self-rivet footprints in tie order
+};
+
+RivetPoints lay_out_flange_rivets(const PlateGeometry& geometry, const SheetSpec& sheet, const RivetLayoutOptions& ro) {
+  RivetPoints rp;
+  rp.fixed.resize(geometry.polygons.size());
+  rp.layouts.resize(geometry.polygons.size());
   bool any_flange = false;
   for (size_t k = 0; k < geometry.polygons.size(); ++k) {
     if (geometry.rivet_area[k] < 0) continue;
     any_flange = true;
-    layouts[k] = layout_rivets(geometry.polygons[k], geometry.rivet_edge[k], ro, bend_keep_out(geometry, k, sheet));
-    fixed[k] = layouts[k].all_points();
+    rp.layouts[k] = layout_rivets(geometry.polygons[k], geometry.rivet_edge[k], ro, bend_keep_out(geometry, k, sheet));
+    rp.fixed[k] = rp.layouts[k].all_points();
   }
   if (!any_flange)
     throw FemError("part", "has no rivet flange: nothing holds it to the structure (a mechanism)");
-  // Self-rivets: a footprint on each sheet, like a flange rivet's (a centre and
-  // a ring of radius d), so the tie is a small rigid patch whose stiffness
-  // converges under refinement. A tie between two single nodes is
-  // log-singular: on slanted's gusset our shells and CalculiX's S4 on the same
-  // mesh parted by 10 % (docs/fem.md "Self-rivets").
-  const int ring_points = ro.footprint_points;
+  return rp;
+}
+
+Vec3 plane_normal(const std::vector<Vec3>& poly) {
+  Vec3 n = Vec3::Zero();  // Newell
+  for (size_t i = 0; i < poly.size(); ++i) n += poly[i].cross(poly[(i + 1) % poly.size()]);
+  return Vec3(n.normalized());
+}
+
+// Both sheets a self-rivet joins: (polygon, centre on it).
+std::array<std::pair<int, Vec3>, 2> tie_sheets(const SelfRivetTie& tie) {
+  return {std::pair{tie.polygon_a, tie.point_a}, std::pair{tie.polygon_b, tie.point_b}};
+}
+
+// A self-rivet gets a footprint on each sheet, like a flange rivet's (a centre
+// and a ring of radius d), so the tie is a small rigid patch whose stiffness
+// converges under refinement. A tie between two single nodes is log-singular:
+// on slanted's gusset our shells and CalculiX's S4 on the same mesh parted by
+// 10 % (docs/fem.md "Self-rivets").
+void add_self_rivet_footprints(RivetPoints& rp, const PlateGeometry& geometry, const std::vector<SelfRivetTie>& ties,
+                               const RivetLayoutOptions& ro) {
   const double tie_radius = rivet_diameter(ro);
-  auto plane_normal = [&](int k) {
-    const auto& poly = geometry.polygons[k];
-    Vec3 n = Vec3::Zero();  // Newell
-    for (size_t i = 0; i < poly.size(); ++i) n += poly[i].cross(poly[(i + 1) % poly.size()]);
-    return Vec3(n.normalized());
-  };
-  for (const auto& tie : options.self_rivets) {
-    for (const auto& [k, centre] : {std::pair{tie.polygon_a, tie.point_a}, std::pair{tie.polygon_b, tie.point_b}}) {
+  for (const auto& tie : ties) {
+    for (const auto& [k, centre] : tie_sheets(tie)) {
       if (k < 0 || k >= static_cast<int>(geometry.polygons.size()))
         throw FemError("self-rivet", "names polygon " + std::to_string(k) + " of a part with " +
                                          std::to_string(geometry.polygons.size()) + " tabs");
-      const auto fp = rivet_footprint(centre, plane_normal(k), tie_radius, ring_points);
-      fixed[k].insert(fixed[k].end(), fp.begin(), fp.end());
+      const auto fp = rivet_footprint(centre, plane_normal(geometry.polygons[k]), tie_radius, ro.footprint_points);
+      rp.fixed[k].insert(rp.fixed[k].end(), fp.begin(), fp.end());
     }
   }
+}
 
-  PlateMeshOptions mo;
-  mo.thickness = t;
-  mo.element_size = options.element_size;
-  pm.mesh = mesh_plates(geometry.polygons, fixed, mo);
+// Per polygon, the nodes of its elements in first-use order.
+std::vector<std::vector<int>> nodes_per_polygon(const PartModel& pm, size_t polygons) {
+  const ShellModel& m = pm.model;
+  std::vector<std::vector<int>> polygon_nodes(polygons);
+  std::vector<std::vector<char>> seen(polygons, std::vector<char>(m.nodes.size(), 0));
+  for (size_t e = 0; e < m.triangles.size(); ++e) {
+    const int k = pm.mesh.element_polygon[e];
+    for (int v : m.triangles[e])
+      if (!seen[k][v]) seen[k][v] = 1, polygon_nodes[k].push_back(v);
+  }
+  return polygon_nodes;
+}
 
+// Clamps every rivet's footprint: its centre, its ring and every node of the
+// flange inside the ring. The ring alone is not enough: below h ~ d the
+// mesher puts lattice nodes inside the ring, and a footprint of seven clamped
+// points with free nodes between them softens as h shrinks (hat bracket
+// compliance 0.1079 -> 0.1088 J at h = 3 -> 1.5 mm; with the disc clamped
+// 0.10787 -> 0.10799 J, docs/fem.md "Riveted multi-leg parts").
+void clamp_flange_rivets(PartModel& pm, const PlateGeometry& geometry, const std::vector<RivetLayout>& layouts,
+                         const std::vector<std::vector<int>>& polygon_nodes) {
   ShellModel& m = pm.model;
-  m.nodes = pm.mesh.mesh.vertices;
-  m.triangles = pm.mesh.mesh.triangles;
-  m.material = problem.material;
-
-  // Clamp every rivet's footprint: its centre, its ring and every node of the
-  // flange inside the ring. The ring alone is not enough: below h ~ d the
-  // mesher puts lattice nodes inside the ring, and a footprint of seven clamped
-  // points with free nodes between them softens as h shrinks (hat bracket
-  // compliance 0.1079 -> 0.1088 J at h = 3 -> 1.5 mm; with the disc clamped
-  // 0.10787 -> 0.10799 J, docs/fem.md "Riveted multi-leg parts").
-  std::vector<std::vector<int>> polygon_nodes(geometry.polygons.size());
-  {
-    std::vector<std::vector<char>> seen(geometry.polygons.size(), std::vector<char>(m.nodes.size(), 0));
-    for (size_t e = 0; e < m.triangles.size(); ++e) {
-      const int k = pm.mesh.element_polygon[e];
-      for (int v : m.triangles[e])
-        if (!seen[k][v]) seen[k][v] = 1, polygon_nodes[k].push_back(v);
-    }
-  }
   std::vector<char> clamped(m.nodes.size(), 0);
   auto clamp_once = [&](int v) {
     if (!clamped[v]) clamped[v] = 1, m.clamp(v);
@@ -156,27 +176,36 @@ PartModel build_part_model(const Problem& problem, int load_index, const PlateGe
         if ((m.nodes[v] - layouts[k].points[r]).norm() <= radius) clamp_once(v);
     }
   }
+}
 
-  // Self-rivets: one rigid link per rivet from its centre node on sheet a to
-  // every other node of either sheet inside its footprint (the ring included).
+// One rigid link per self-rivet from its centre node on sheet a to every other
+// node of either sheet inside its footprint (the ring included).
+void tie_self_rivets(PartModel& pm, const PlateGeometry& geometry, const std::vector<RivetLayout>& layouts,
+                     const std::vector<SelfRivetTie>& ties, const std::vector<std::vector<int>>& polygon_nodes,
+                     const RivetLayoutOptions& ro) {
+  ShellModel& m = pm.model;
+  const int ring_points = ro.footprint_points;
   // Tie footprints were appended after the flange rivets', in tie order, per polygon.
   std::vector<size_t> next(geometry.polygons.size());
   for (size_t k = 0; k < geometry.polygons.size(); ++k)
     next[k] = geometry.rivet_area[k] >= 0 ? layouts[k].all_points().size() : 0;
-  const double inside = tie_radius * (1 + 1e-9) + 1e-12;
-  for (const auto& tie : options.self_rivets) {
+  const double inside = rivet_diameter(ro) * (1 + 1e-9) + 1e-12;
+  for (const auto& tie : ties) {
     const int master = pm.mesh.fixed_point_nodes[tie.polygon_a][next[tie.polygon_a]];
     next[tie.polygon_a] += 1 + ring_points;
     next[tie.polygon_b] += 1 + ring_points;
     std::vector<int> slaves;
-    for (const auto& [k, centre] : {std::pair{tie.polygon_a, tie.point_a}, std::pair{tie.polygon_b, tie.point_b}})
+    for (const auto& [k, centre] : tie_sheets(tie))
       for (int v : polygon_nodes[k])
         if (v != master && (m.nodes[v] - centre).norm() <= inside && std::find(slaves.begin(), slaves.end(), v) == slaves.end())
           slaves.push_back(v);  // the mesher may have merged coincident points of the two sheets into one node
     if (!slaves.empty()) m.rigid_links.push_back(RigidLink{master, slaves});
   }
+}
 
-  // The load box: rigid, bonded to the base-tab nodes under it (DESIGN.md).
+// The load box: rigid, bonded to the base-tab nodes under it (DESIGN.md).
+void bond_load_box(PartModel& pm, const Load& load, double t) {
+  ShellModel& m = pm.model;
   const auto bottom = load.bottom_face();
   const Vec3 down = load.rotation * Vec3(0, 0, -1);
   std::vector<Vec3> footprint;
@@ -188,6 +217,32 @@ PartModel build_part_model(const Problem& problem, int load_index, const PlateGe
   m.rigid_links.push_back(RigidLink{pm.load_node, bonded});
   m.add_load(pm.load_node, load.force, load.moment);
   m.load_node = pm.load_node;
+}
+
+}  // namespace
+
+PartModel build_part_model(const Problem& problem, int load_index, const PlateGeometry& geometry, const PartModelOptions& options) {
+  check_part_model_inputs(problem, load_index, geometry);
+  const double t = problem.material.thickness;
+  const SheetSpec sheet = SheetSpec::from(problem);
+  const RivetLayoutOptions ro = flange_rivet_options(problem);
+  RivetPoints rivets = lay_out_flange_rivets(geometry, sheet, ro);
+  add_self_rivet_footprints(rivets, geometry, options.self_rivets, ro);
+
+  PartModel pm;
+  PlateMeshOptions mo;
+  mo.thickness = t;
+  mo.element_size = options.element_size;
+  pm.mesh = mesh_plates(geometry.polygons, rivets.fixed, mo);
+  ShellModel& m = pm.model;
+  m.nodes = pm.mesh.mesh.vertices;
+  m.triangles = pm.mesh.mesh.triangles;
+  m.material = problem.material;
+
+  const std::vector<std::vector<int>> polygon_nodes = nodes_per_polygon(pm, geometry.polygons.size());
+  clamp_flange_rivets(pm, geometry, rivets.layouts, polygon_nodes);
+  tie_self_rivets(pm, geometry, rivets.layouts, options.self_rivets, polygon_nodes, ro);
+  bond_load_box(pm, problem.loads[load_index], t);
   return pm;
 }
 
