@@ -247,6 +247,230 @@ std::vector<Vec3> find_fold_ends(const std::vector<std::vector<Vec3>>& snapped, 
   return out;
 }
 
+
+// Polygon vertices closer than `merge` are one point: each is replaced by the
+// cluster's representative, the first such vertex in polygon order. Tab
+// corners computed from bend angles and offsets miss their neighbour's corner
+// by round-off (0.3, 0.4 and 2.4 um on the right-angle bay's gps_receiver
+// part, up to 1.9 um on the other parts of out/: more than the node
+// tolerance). Every edge therefore starts, ends and splits at a
+// representative, never at its own copy, so both sides of a shared segment
+// are split at bit-identical end points and get the same nodes. Dropping the
+// near-duplicate on one side only (no sliver) but keeping each side's own end
+// point left the fold between them cracked: its nodes 0.1-2.4 um apart,
+// unmerged, and the part 5-15 % softer or stiffer at random element sizes
+// (docs/fem.md "A large right-angle part").
+std::vector<std::vector<Vec3>> snap_corners(const std::vector<std::vector<Vec3>>& polygons, double merge) {
+  std::vector<Vec3> representatives;
+  std::vector<std::vector<Vec3>> snapped(polygons.size());
+  for (size_t k = 0; k < polygons.size(); ++k)
+    for (const Vec3& v : polygons[k]) {
+      const Vec3* rep = nullptr;
+      for (const Vec3& r : representatives)
+        if ((r - v).norm() <= merge) {
+          rep = &r;
+          break;
+        }
+      if (!rep) representatives.push_back(v);
+      snapped[k].push_back(rep ? *rep : v);
+    }
+  return snapped;
+}
+
+// One polygon's points to triangulate, in the 2-D frame of its plane (m): the
+// outline first, in order around the polygon, then the fixed points, the
+// fold-end rings and the interior lattice.
+struct PolygonPoints {
+  std::vector<Vec2> points;     // #P, m
+  std::vector<Vec3> outline3d;  // m, the outline points exactly as the neighbours compute them
+  size_t n_fixed = 0;           // fixed (rivet) points, right after the outline
+  size_t n_pinned = 0;          // points [0, n_pinned) are not smoothed: outline, fixed points, rings
+  size_t n_outline() const { return outline3d.size(); }
+};
+
+// The outline of snapped polygon k: each edge split at every representative
+// lying on it (within `merge`), each piece divided by the size field. A split
+// at a neighbour's vertex uses that vertex exactly, which the neighbour's own
+// edge starts or ends at, rather than its projection onto this edge; it may
+// therefore lie up to `merge` off the edge's line, which the constrained
+// triangulation takes as it is (an outline with a kink of that height).
+// Boundary points closer than `merge` are one (snap_corners): a corner of a
+// neighbouring tab a fraction of a micrometre from this tab's corner would
+// otherwise make a sliver element that CalculiX cannot give a normal
+// ("gen3dnor"), and that carries no mechanics at the scale of a sheet.
+void add_outline(PolygonPoints& pp, const std::vector<std::vector<Vec3>>& snapped, size_t k, const PlaneFrame& f,
+                 const SizeField& field, double merge) {
+  const size_t nv = snapped[k].size();
+  for (size_t i = 0; i < nv; ++i) {
+    const Vec3& a = snapped[k][i];
+    const Vec3& b = snapped[k][(i + 1) % nv];
+    const double len = (b - a).norm();
+    if (len <= merge) continue;  // repeated vertex (its neighbour edge starts at b)
+    std::vector<std::pair<double, Vec3>> ts = {{0.0, a}, {1.0, b}};  // (parameter along a->b, split point)
+    for (const auto& other : snapped)
+      for (const Vec3& q : other) {
+        const double t = (q - a).dot(b - a) / (len * len);
+        if (t * len <= merge || (1 - t) * len <= merge) continue;
+        if ((a + t * (b - a) - q).norm() <= merge) ts.emplace_back(t, q);
+      }
+    std::sort(ts.begin(), ts.end(), [](const auto& x, const auto& y) { return x.first < y.first; });
+    std::vector<std::pair<double, Vec3>> uniq;
+    for (const auto& t : ts)
+      if (uniq.empty() || (t.first - uniq.back().first) * len > merge) uniq.push_back(t);
+    // The end point b stays the last split (a neighbour's vertex within
+    // `merge` of b was skipped above, so it cannot displace it).
+    for (size_t s = 0; s + 1 < uniq.size(); ++s)
+      for (const Vec3& p : field.divide(uniq[s].second, uniq[s + 1].second)) {
+        pp.outline3d.push_back(p);
+        pp.points.push_back(f.to2d(p));
+      }
+  }
+}
+
+// Fixed interior points (rivets) of polygon k, checked against its outline.
+void add_fixed_points(PolygonPoints& pp, const std::vector<Vec3>& fixed, size_t k, const PlaneFrame& f,
+                      const std::vector<Vec2>& poly2, double tol) {
+  for (const Vec3& q : fixed) {
+    if (!q.allFinite()) throw FemError(polygon_name(k), "fixed point is not finite");
+    const Vec2 q2 = f.to2d(q);
+    if (std::abs((q - f.origin).dot(f.ez)) > 1e3 * tol || min_inside_distance(poly2, q2) < -tol)
+      throw FemError(polygon_name(k), "a fixed (rivet) point lies outside the polygon");
+    pp.points.push_back(q2);
+    ++pp.n_fixed;
+  }
+}
+
+// Around each fold end near the polygon's plane: rings of points spaced by the
+// local size, each kept at least half its size from the boundary, the fixed
+// points and the ring points before it. A ring of 3-D radius r around a
+// corner at distance delta from the plane is a circle of radius
+// sqrt(r^2 - delta^2) about the corner's foot.
+void add_fold_end_rings(PolygonPoints& pp, const PlaneFrame& f, const std::vector<Vec2>& poly2,
+                        const SizeField& field) {
+  const size_t first = pp.points.size();
+  const size_t n_fixed_end = pp.n_outline() + pp.n_fixed;
+  for (size_t c = 0; c < field.corners().size(); ++c) {
+    const Vec3& corner = field.corners()[c];
+    const double delta = std::abs((corner - f.origin).dot(f.ez));
+    const Vec2 foot = f.to2d(corner);
+    for (size_t ring = 0; ring < field.ring_radii().size(); ++ring) {
+      const double r = field.ring_radii()[ring];
+      if (r <= delta) continue;
+      const double rho = std::sqrt(r * r - delta * delta);
+      const int n = std::max(3, static_cast<int>(std::ceil(2 * kPi * rho / field.size_at_distance(r))));
+      for (int j = 0; j < n; ++j) {
+        const double angle = 2 * kPi * (j + 0.5 * (ring % 2)) / n;
+        const Vec2 q = foot + rho * Vec2(std::cos(angle), std::sin(angle));
+        double d = 0;
+        if (field.nearest(f.to3d(q), &d) != static_cast<int>(c)) continue;  // another corner's rings cover it
+        const double size = field.size_at_distance(d);
+        if (min_inside_distance(poly2, q) < 0.5 * size) continue;
+        bool crowded = false;
+        for (size_t i = pp.n_outline(); i < n_fixed_end; ++i) crowded = crowded || (pp.points[i] - q).norm() < 0.5 * size;
+        for (size_t i = first; i < pp.points.size(); ++i) crowded = crowded || (pp.points[i] - q).norm() < 0.5 * size;
+        if (!crowded) pp.points.push_back(q);
+      }
+    }
+  }
+}
+
+// Interior: an equilateral lattice of spacing h aligned with the longest edge
+// (the frame's x axis), kept at least h/2 from the boundary and from the fixed
+// points, and clear of the fold ends' rings.
+void add_lattice(PolygonPoints& pp, const PlaneFrame& f, const std::vector<Vec2>& poly2, const SizeField& field,
+                 double h) {
+  Vec2 lo = poly2[0], hi = poly2[0];
+  for (const Vec2& q : poly2) {
+    lo = lo.cwiseMin(q);
+    hi = hi.cwiseMax(q);
+  }
+  const size_t n_fixed_end = pp.n_outline() + pp.n_fixed;
+  const double dy = h * std::sqrt(3.0) / 2.0;
+  const int rows = static_cast<int>(std::ceil((hi.y() - lo.y()) / dy)) + 1;
+  const int cols = static_cast<int>(std::ceil((hi.x() - lo.x()) / h)) + 2;
+  for (int r = 0; r < rows; ++r)
+    for (int c = 0; c < cols; ++c) {
+      const Vec2 q(lo.x() + (c + (r % 2 ? 0.5 : 0.0)) * h, lo.y() + r * dy);
+      if (min_inside_distance(poly2, q) < 0.5 * h) continue;
+      bool near_fixed = false;
+      for (size_t i = pp.n_outline(); i < n_fixed_end; ++i) near_fixed = near_fixed || (pp.points[i] - q).norm() < 0.5 * h;
+      if (near_fixed) continue;
+      if (field.graded()) {
+        double d = 0;
+        field.nearest(f.to3d(q), &d);
+        if (d < field.lattice_distance()) continue;
+      }
+      pp.points.push_back(q);
+    }
+}
+
+// The constrained Delaunay triangulation of the points inside their outline
+// (delaunay_2d.hpp: exact predicates, so no jitter of cocircular points and
+// no sliver outside the outline to drop), then `passes` rounds of Laplacian
+// smoothing of the lattice points, each re-triangulated; they even out the
+// band next to the boundary.
+std::vector<std::array<int, 3>> triangulate_smoothed(PolygonPoints& pp, int passes, size_t k) {
+  std::vector<int> outline(pp.n_outline());
+  std::iota(outline.begin(), outline.end(), 0);
+  auto triangulate = [&]() {
+    PolygonTriangulation t;
+    try {
+      t = triangulate_polygon(pp.points, outline);
+    } catch (const FemError& e) {
+      throw FemError(polygon_name(k), "triangulation: " + std::string(e.what()));
+    }
+    if (!t.unused_points.empty()) {
+      const size_t i = t.unused_points.front();
+      const bool fixed = i >= pp.n_outline() && i < pp.n_outline() + pp.n_fixed;
+      throw FemError(polygon_name(k), fixed ? "a fixed (rivet) point lies outside the polygon"
+                                            : "mesh point " + std::to_string(i) + " lies outside the outline");
+    }
+    return t.triangles;
+  };
+  std::vector<std::array<int, 3>> tris = triangulate();
+  for (int pass = 0; pass < passes; ++pass) {
+    std::vector<Vec2> sum(pp.points.size(), Vec2::Zero());
+    std::vector<int> count(pp.points.size(), 0);
+    for (const auto& t : tris)
+      for (int a = 0; a < 3; ++a)
+        for (int b = 0; b < 3; ++b)
+          if (a != b) {
+            sum[t[a]] += pp.points[t[b]];
+            ++count[t[a]];
+          }
+    for (size_t i = pp.n_pinned; i < pp.points.size(); ++i)
+      if (count[i] > 0) pp.points[i] = sum[i] / count[i];
+    tris = triangulate();
+  }
+  return tris;
+}
+
+// Adds polygon k's nodes and triangles to `out`: outline points at their
+// exact 3-D positions and the fixed points are merged with the other
+// polygons' nodes by position; the rest are new.
+void add_triangles(PlateMesh& out, NodeTable& table, const PolygonPoints& pp,
+                   const std::vector<std::array<int, 3>>& tris, const PlaneFrame& f, size_t k, double h) {
+  std::vector<int> node(pp.points.size());
+  for (size_t i = 0; i < pp.points.size(); ++i)
+    node[i] = table.insert(i < pp.n_outline() ? pp.outline3d[i] : f.to3d(pp.points[i]));
+  for (size_t j = 0; j < pp.n_fixed; ++j) out.fixed_point_nodes[k].push_back(node[pp.n_outline() + j]);
+  for (const auto& t : tris) {
+    const Vec2 u = pp.points[t[1]] - pp.points[t[0]], v = pp.points[t[2]] - pp.points[t[0]];
+    const double area2 = u.x() * v.y() - u.y() * v.x();
+    // Exact predicates make every triangle counter-clockwise; one this flat
+    // comes only from a polygon far too thin for h, and would make the
+    // stiffness singular.
+    if (area2 <= 1e-10 * h * h) {
+      std::ostringstream s;
+      s << "the triangulation produced a sliver (area " << 0.5 * area2 << " m^2); polygon too thin for h = " << h
+        << " m?";
+      throw FemError(polygon_name(k), s.str());
+    }
+    out.mesh.triangles.push_back({node[t[0]], node[t[1]], node[t[2]]});
+    out.element_polygon.push_back(static_cast<int>(k));
+  }
+}
+
 }  // namespace
 
 double default_element_size(const std::vector<std::vector<Vec3>>& polygons, double thickness) {
@@ -271,36 +495,13 @@ PlateMesh mesh_plates(const std::vector<std::vector<Vec3>>& polygons, const std:
   NodeTable table(out.mesh.vertices, tol);
   out.fixed_point_nodes.resize(polygons.size());
 
-  // Polygon vertices closer than `merge` are one point. Tab corners computed
-  // from bend angles and offsets miss their neighbour's corner by round-off
-  // (0.3, 0.4 and 2.4 um on the right-angle bay's gps_receiver part, up to
-  // 1.9 um on the other parts of out/: more than `tol`). `merge` is at least
-  // t/100 (16 um for 1.6 mm sheet), far below any feature of a sheet part, so
-  // that it does not shrink under mesh refinement below the round-off: at
-  // h/1000 alone, h = 2 mm left the 2.4 um pair apart and made a sliver
-  // (a singular stiffness). Each edge therefore starts, ends and splits at the cluster's
-  // representative (the first such vertex in polygon order), never at its own
-  // copy, so both sides of a shared segment are split at bit-identical end
-  // points and get the same nodes. Dropping the near-duplicate on one side
-  // only (no sliver) but keeping each side's own end point left the fold
-  // between them cracked: its nodes 0.1-2.4 um apart, unmerged, and the part
-  // 5-15 % softer or stiffer at random element sizes (docs/fem.md "A large
-  // right-angle part"). A vertex closer than `merge` to another polygon's
-  // edge splits it, for the same reason.
+  // `merge` (snap_corners) is at least t/100 (16 um for 1.6 mm sheet), far
+  // below any feature of a sheet part, so that it does not shrink under mesh
+  // refinement below the round-off: at h/1000 alone, h = 2 mm left a 2.4 um
+  // pair apart and made a sliver (a singular stiffness). A vertex closer than
+  // `merge` to another polygon's edge splits it, for the same reason.
   const double merge = std::max({tol, 1e-3 * h, 1e-2 * options.thickness});
-  std::vector<Vec3> representatives;
-  std::vector<std::vector<Vec3>> snapped(polygons.size());
-  for (size_t k = 0; k < polygons.size(); ++k)
-    for (const Vec3& v : polygons[k]) {
-      const Vec3* rep = nullptr;
-      for (const Vec3& r : representatives)
-        if ((r - v).norm() <= merge) {
-          rep = &r;
-          break;
-        }
-      if (!rep) representatives.push_back(v);
-      snapped[k].push_back(rep ? *rep : v);
-    }
+  const std::vector<std::vector<Vec3>> snapped = snap_corners(polygons, merge);
 
   double h0 = options.fold_end_element_size > 0 ? options.fold_end_element_size : 0.25 * options.thickness;
   h0 = std::max(h0, 20 * merge);
@@ -309,177 +510,17 @@ PlateMesh mesh_plates(const std::vector<std::vector<Vec3>>& polygons, const std:
   const SizeField field(h, h0, options.fold_end_grading, out.fold_ends);
 
   for (size_t k = 0; k < polygons.size(); ++k) {
-    const auto& poly = polygons[k];
-    const PlaneFrame f = polygon_frame(poly, k, tol);
-    const size_t nv = poly.size();
-    std::vector<Vec2> poly2(nv);
-    for (size_t i = 0; i < nv; ++i) poly2[i] = f.to2d(poly[i]);
-
-    // Boundary: each edge split at every vertex of any polygon lying on it.
-    std::vector<Vec3> pts3;      // the points to triangulate, 3-D
-    std::vector<int> fixed_3d;   // 1 for boundary and fixed points (not smoothed)
-    // Boundary points closer than `merge` are one (see `snapped` above): a
-    // corner of a neighbouring tab a fraction of a micrometre from this tab's
-    // corner would otherwise make a sliver element that CalculiX cannot give a
-    // normal ("gen3dnor"), and that carries no mechanics at the scale of a sheet.
-    for (size_t i = 0; i < nv; ++i) {
-      const Vec3& a = snapped[k][i];
-      const Vec3& b = snapped[k][(i + 1) % nv];
-      const double len = (b - a).norm();
-      if (len <= merge) continue;  // repeated vertex (its neighbour edge starts at b)
-      // Split points as (parameter along a->b, the point itself): a split at a
-      // neighbour's vertex uses that vertex exactly, which the neighbour's own
-      // edge starts or ends at, rather than its projection onto this edge.
-      std::vector<std::pair<double, Vec3>> ts = {{0.0, a}, {1.0, b}};
-      for (const auto& other : snapped)
-        for (const Vec3& q : other) {
-          const double t = (q - a).dot(b - a) / (len * len);
-          if (t * len <= merge || (1 - t) * len <= merge) continue;
-          if ((a + t * (b - a) - q).norm() <= merge) ts.emplace_back(t, q);
-        }
-      std::sort(ts.begin(), ts.end(), [](const auto& x, const auto& y) { return x.first < y.first; });
-      std::vector<std::pair<double, Vec3>> uniq;
-      for (const auto& t : ts)
-        if (uniq.empty() || (t.first - uniq.back().first) * len > merge) uniq.push_back(t);
-      // The end point b must stay the last split (a neighbour's vertex within
-      // `merge` of b was skipped above, so it cannot displace it).
-      for (size_t s = 0; s + 1 < uniq.size(); ++s) {
-        for (const Vec3& p : field.divide(uniq[s].second, uniq[s + 1].second)) {
-          pts3.push_back(p);
-          fixed_3d.push_back(1);
-        }
-      }
-    }
-    const size_t n_boundary = pts3.size();
-    // Fixed interior points (rivets).
-    std::vector<Vec2> fixed2;
-    if (!fixed_points.empty())
-      for (const Vec3& q : fixed_points[k]) {
-        if (!q.allFinite()) throw FemError(polygon_name(k), "fixed point is not finite");
-        const Vec2 q2 = f.to2d(q);
-        if (std::abs((q - f.origin).dot(f.ez)) > 1e3 * tol || min_inside_distance(poly2, q2) < -tol)
-          throw FemError(polygon_name(k), "a fixed (rivet) point lies outside the polygon");
-        fixed2.push_back(q2);
-        pts3.push_back(f.to3d(q2));
-        fixed_3d.push_back(1);
-      }
-    // Around each fold end near this polygon's plane: rings of points spaced
-    // by the local size, each kept at least half its size from the boundary,
-    // the fixed points and the ring points before it. A ring of 3-D radius r
-    // around a corner at distance delta from the plane is a circle of radius
-    // sqrt(r^2 - delta^2) about the corner's foot.
-    std::vector<Vec2> graded2;
-    for (size_t c = 0; c < field.corners().size(); ++c) {
-      const Vec3& corner = field.corners()[c];
-      const double delta = std::abs((corner - f.origin).dot(f.ez));
-      const Vec2 foot = f.to2d(corner);
-      for (size_t ring = 0; ring < field.ring_radii().size(); ++ring) {
-        const double r = field.ring_radii()[ring];
-        if (r <= delta) continue;
-        const double rho = std::sqrt(r * r - delta * delta);
-        const int n = std::max(3, static_cast<int>(std::ceil(2 * kPi * rho / field.size_at_distance(r))));
-        for (int j = 0; j < n; ++j) {
-          const double angle = 2 * kPi * (j + 0.5 * (ring % 2)) / n;
-          const Vec2 q = foot + rho * Vec2(std::cos(angle), std::sin(angle));
-          const Vec3 q3 = f.to3d(q);
-          double d = 0;
-          if (field.nearest(q3, &d) != static_cast<int>(c)) continue;  // another corner's rings cover it
-          const double size = field.size_at_distance(d);
-          if (min_inside_distance(poly2, q) < 0.5 * size) continue;
-          bool crowded = false;
-          for (const Vec2& fp : fixed2) crowded = crowded || (fp - q).norm() < 0.5 * size;
-          for (const Vec2& gp : graded2) crowded = crowded || (gp - q).norm() < 0.5 * size;
-          if (crowded) continue;
-          graded2.push_back(q);
-          pts3.push_back(q3);
-          fixed_3d.push_back(1);
-        }
-      }
-    }
-    // Interior: equilateral lattice of spacing h aligned with the longest
-    // edge, kept at least h/2 from the boundary and from fixed points, and
-    // clear of the fold ends' rings.
-    Vec2 lo = poly2[0], hi = poly2[0];
-    for (const Vec2& q : poly2) {
-      lo = lo.cwiseMin(q);
-      hi = hi.cwiseMax(q);
-    }
-    const double dy = h * std::sqrt(3.0) / 2.0;
-    const int rows = static_cast<int>(std::ceil((hi.y() - lo.y()) / dy)) + 1;
-    const int cols = static_cast<int>(std::ceil((hi.x() - lo.x()) / h)) + 2;
-    for (int r = 0; r < rows; ++r)
-      for (int c = 0; c < cols; ++c) {
-        const Vec2 q(lo.x() + (c + (r % 2 ? 0.5 : 0.0)) * h, lo.y() + r * dy);
-        if (min_inside_distance(poly2, q) < 0.5 * h) continue;
-        bool near_fixed = false;
-        for (const Vec2& fp : fixed2) near_fixed = near_fixed || (fp - q).norm() < 0.5 * h;
-        if (near_fixed) continue;
-        if (field.graded()) {
-          double d = 0;
-          field.nearest(f.to3d(q), &d);
-          if (d < field.lattice_distance()) continue;
-        }
-        pts3.push_back(f.to3d(q));
-        fixed_3d.push_back(0);
-      }
-
-    std::vector<Vec2> pts2(pts3.size());
-    for (size_t i = 0; i < pts3.size(); ++i) pts2[i] = f.to2d(pts3[i]);
-    // The constrained Delaunay triangulation of the points inside the
-    // boundary (delaunay_2d.hpp): exact predicates, so cocircular points need
-    // no jitter and no sliver outside the boundary is made.
-    std::vector<int> outline(n_boundary);
-    std::iota(outline.begin(), outline.end(), 0);
-    auto triangulate = [&]() {
-      PolygonTriangulation t;
-      try {
-        t = triangulate_polygon(pts2, outline);
-      } catch (const FemError& e) {
-        throw FemError(polygon_name(k), "triangulation: " + std::string(e.what()));
-      }
-      if (!t.unused_points.empty()) {
-        const size_t i = t.unused_points.front();
-        throw FemError(polygon_name(k), i >= n_boundary && i < n_boundary + fixed2.size()
-                                            ? "a fixed (rivet) point lies outside the polygon"
-                                            : "mesh point " + std::to_string(i) + " lies outside the outline");
-      }
-      return t.triangles;
-    };
-    std::vector<std::array<int, 3>> tris = triangulate();
-    for (int pass = 0; pass < options.smoothing_passes; ++pass) {
-      std::vector<Vec2> sum(pts2.size(), Vec2::Zero());
-      std::vector<int> count(pts2.size(), 0);
-      for (const auto& t : tris)
-        for (int a = 0; a < 3; ++a)
-          for (int b = 0; b < 3; ++b)
-            if (a != b) {
-              sum[t[a]] += pts2[t[b]];
-              ++count[t[a]];
-            }
-      for (size_t i = 0; i < pts2.size(); ++i)
-        if (!fixed_3d[i] && count[i] > 0) pts2[i] = sum[i] / count[i];
-      tris = triangulate();
-    }
-    // Nodes: boundary and fixed points are merged globally; interior points are new.
-    std::vector<int> node(pts2.size());
-    for (size_t i = 0; i < pts2.size(); ++i)
-      node[i] = table.insert(i < n_boundary ? pts3[i] : f.to3d(pts2[i]));
-    for (size_t j = 0; j < fixed2.size(); ++j) out.fixed_point_nodes[k].push_back(node[n_boundary + j]);
-    for (const auto& t : tris) {
-      const double area2 = (pts2[t[1]] - pts2[t[0]]).x() * (pts2[t[2]] - pts2[t[0]]).y() -
-                           (pts2[t[1]] - pts2[t[0]]).y() * (pts2[t[2]] - pts2[t[0]]).x();
-      // Exact predicates make every triangle counter-clockwise; one this flat
-      // comes only from a polygon far too thin for h, and would make the
-      // stiffness singular.
-      if (area2 <= 1e-10 * h * h) {
-        std::ostringstream s;
-        s << "the triangulation produced a sliver (area " << 0.5 * area2 << " m^2); polygon too thin for h = " << h
-          << " m?";
-        throw FemError(polygon_name(k), s.str());
-      }
-      out.mesh.triangles.push_back({node[t[0]], node[t[1]], node[t[2]]});
-      out.element_polygon.push_back(static_cast<int>(k));
-    }
+    const PlaneFrame f = polygon_frame(polygons[k], k, tol);
+    std::vector<Vec2> poly2;
+    for (const Vec3& p : polygons[k]) poly2.push_back(f.to2d(p));
+    PolygonPoints pp;
+    add_outline(pp, snapped, k, f, field, merge);
+    if (!fixed_points.empty()) add_fixed_points(pp, fixed_points[k], k, f, poly2, tol);
+    add_fold_end_rings(pp, f, poly2, field);
+    pp.n_pinned = pp.points.size();
+    add_lattice(pp, f, poly2, field, h);
+    const std::vector<std::array<int, 3>> tris = triangulate_smoothed(pp, options.smoothing_passes, k);
+    add_triangles(out, table, pp, tris, f, k, h);
   }
   return out;
 }
