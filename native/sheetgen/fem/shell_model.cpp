@@ -76,10 +76,7 @@ void check_node(const ShellModel& m, int node, const std::string& what) {
                              std::to_string(m.nodes.size()) + ")");
 }
 
-}  // namespace
-
-void validate_shell_model(const ShellModel& m) {
-  const Material& mat = m.material;
+void check_material(const Material& mat) {
   if (!(std::isfinite(mat.thickness) && mat.thickness > 0))
     throw FemError("material.thickness", "must be a finite number > 0 m (got " + str(mat.thickness) + ")");
   if (!(std::isfinite(mat.youngs_modulus) && mat.youngs_modulus > 0))
@@ -88,64 +85,82 @@ void validate_shell_model(const ShellModel& m) {
     throw FemError("material.poisson_ratio", "must lie in (-1, 0.5) (got " + str(mat.poisson_ratio) + ")");
   if (!(std::isfinite(mat.yield_strength) && mat.yield_strength > 0))
     throw FemError("material.yield_strength", "must be a finite number > 0 Pa (got " + str(mat.yield_strength) + ")");
+}
+
+// What uses each node, gathered while the parts of the model are checked.
+struct NodeUse {
+  std::vector<char> in_element, supported, in_link;  // #N
+  std::vector<int> slave_of;                         // #N, the rigid link a node is a slave of, -1 if none
+  explicit NodeUse(int n) : in_element(n, 0), supported(n, 0), in_link(n, 0), slave_of(n, -1) {}
+};
+
+void check_elements(const ShellModel& m, NodeUse& use) {
   if (m.triangles.empty()) throw FemError("triangles", "the model has no elements");
-  const int n = static_cast<int>(m.nodes.size());
-  for (int i = 0; i < n; ++i)
+  for (size_t i = 0; i < m.nodes.size(); ++i)
     if (!m.nodes[i].allFinite()) throw FemError("node " + std::to_string(i), "coordinate is not finite");
-  std::vector<char> in_element(n, 0), supported(n, 0);
   for (size_t e = 0; e < m.triangles.size(); ++e) {
     const auto& t = m.triangles[e];
     for (int k = 0; k < 3; ++k) {
       check_node(m, t[k], "triangle " + std::to_string(e));
-      in_element[t[k]] = 1;
+      use.in_element[t[k]] = 1;
     }
     if (t[0] == t[1] || t[1] == t[2] || t[0] == t[2])
       throw FemError("triangle " + std::to_string(e), "repeats a node");
   }
+}
+
+void check_supports(const ShellModel& m, NodeUse& use) {
   for (const NodeSupport& s : m.supports) {
     check_node(m, s.node, "support");
-    if (std::any_of(s.fixed.begin(), s.fixed.end(), [](bool b) { return b; })) supported[s.node] = 1;
+    if (std::any_of(s.fixed.begin(), s.fixed.end(), [](bool b) { return b; })) use.supported[s.node] = 1;
   }
-  std::vector<int> slave_of(n, -1);
-  std::vector<char> in_link(n, 0);
+}
+
+void check_rigid_links(const ShellModel& m, NodeUse& use) {
   for (size_t l = 0; l < m.rigid_links.size(); ++l) {
     const RigidLink& link = m.rigid_links[l];
     const std::string name = "rigid_links[" + std::to_string(l) + "]";
     check_node(m, link.master, name + ".master");
     if (link.slaves.empty()) throw FemError(name, "has no slave nodes");
-    in_link[link.master] = 1;
+    use.in_link[link.master] = 1;
     for (int s : link.slaves) {
       check_node(m, s, name + ".slaves");
       if (s == link.master) throw FemError(name, "node " + std::to_string(s) + " is its own master");
-      if (slave_of[s] >= 0)
+      if (use.slave_of[s] >= 0)
         throw FemError(name, "node " + std::to_string(s) + " is already a slave of rigid_links[" +
-                                 std::to_string(slave_of[s]) + "]");
-      if (supported[s])
+                                 std::to_string(use.slave_of[s]) + "]");
+      if (use.supported[s])
         throw FemError(name, "slave node " + std::to_string(s) +
                                  " also has a support; support its master instead");
-      slave_of[s] = static_cast<int>(l);
-      in_link[s] = 1;
+      use.slave_of[s] = static_cast<int>(l);
+      use.in_link[s] = 1;
     }
   }
   for (const RigidLink& link : m.rigid_links)
-    if (slave_of[link.master] >= 0)
+    if (use.slave_of[link.master] >= 0)
       throw FemError("rigid link master " + std::to_string(link.master),
                      "is itself a slave of another link (chained links are not supported; merge them)");
+}
+
+void check_loads(const ShellModel& m, const NodeUse& use) {
   for (size_t i = 0; i < m.loads.size(); ++i) {
     const NodalLoad& f = m.loads[i];
     check_node(m, f.node, "loads[" + std::to_string(i) + "]");
     if (!f.force.allFinite() || !f.moment.allFinite())
       throw FemError("loads[" + std::to_string(i) + "]", "force or moment is not finite");
-    if (!in_element[f.node] && !in_link[f.node])
+    if (!use.in_element[f.node] && !use.in_link[f.node])
       throw FemError("loads[" + std::to_string(i) + "]",
                      "acts on node " + std::to_string(f.node) + ", which no element or rigid link uses");
   }
   if (m.load_node >= 0) check_node(m, m.load_node, "load_node");
-  if (!std::any_of(supported.begin(), supported.end(), [](char c) { return c != 0; }))
-    throw FemError("supports", "the model has no supported node, so it is a free mechanism");
+}
 
-  // Every connected patch (elements joined through shared nodes and rigid
-  // links) must reach a support; otherwise K is singular.
+// Every connected patch (elements joined through shared nodes and rigid
+// links) must reach a support; otherwise K is singular.
+void check_every_patch_supported(const ShellModel& m, const NodeUse& use) {
+  if (!std::any_of(use.supported.begin(), use.supported.end(), [](char c) { return c != 0; }))
+    throw FemError("supports", "the model has no supported node, so it is a free mechanism");
+  const int n = static_cast<int>(m.nodes.size());
   UnionFind uf(n);
   for (const auto& t : m.triangles) {
     uf.join(t[0], t[1]);
@@ -155,7 +170,7 @@ void validate_shell_model(const ShellModel& m) {
     for (int s : link.slaves) uf.join(s, link.master);
   std::vector<char> root_supported(n, 0);
   for (int i = 0; i < n; ++i)
-    if (supported[i]) root_supported[uf.find(i)] = 1;
+    if (use.supported[i]) root_supported[uf.find(i)] = 1;
   for (size_t e = 0; e < m.triangles.size(); ++e) {
     if (!root_supported[uf.find(m.triangles[e][0])]) {
       const Vec3 c = (m.nodes[m.triangles[e][0]] + m.nodes[m.triangles[e][1]] + m.nodes[m.triangles[e][2]]) / 3.0;
@@ -165,6 +180,18 @@ void validate_shell_model(const ShellModel& m) {
       throw FemError("triangle " + std::to_string(e), s.str());
     }
   }
+}
+
+}  // namespace
+
+void validate_shell_model(const ShellModel& m) {
+  check_material(m.material);
+  NodeUse use(static_cast<int>(m.nodes.size()));
+  check_elements(m, use);
+  check_supports(m, use);
+  check_rigid_links(m, use);
+  check_loads(m, use);
+  check_every_patch_supported(m, use);
 }
 
 // ---------------------------------------------------------------- solver
@@ -311,6 +338,231 @@ class CholmodLlt : public Eigen::CholmodSupernodalLLT<SparseMatrix, Eigen::Lower
 
 using EigenLdlt = Eigen::SimplicialLDLT<SparseMatrix, Eigen::Lower, Eigen::AMDOrdering<int>>;
 
+// Smallest D_jj / K_jj over all columns, in the factor's (permuted) order.
+double min_pivot_ratio(const EigenLdlt& ldlt, const Eigen::VectorXd& diag) {
+  const int N = static_cast<int>(diag.size());
+  const Eigen::VectorXd& D = ldlt.vectorD();
+  const auto& P = ldlt.permutationP().indices();
+  Eigen::VectorXd pdiag(N);
+  for (int i = 0; i < N; ++i) pdiag(P(i)) = diag(i);
+  double pivot_ratio = std::numeric_limits<double>::infinity();
+  for (int j = 0; j < N; ++j) pivot_ratio = std::min(pivot_ratio, pdiag(j) > 0 ? D(j) / pdiag(j) : 0.0);
+  return pivot_ratio;
+}
+
+// Adds T_e^T Ke T_e of one element to the lower triangle of K_hat.
+void add_element_triplets(std::vector<Eigen::Triplet<double, int>>& triplets, const DofMap& map, const std::array<int, 3>& t,
+                          const Matrix18d& Ke) {
+  int beg[18], end[18];
+  for (int a = 0; a < 18; ++a) {
+    const int full = 6 * t[a / 6] + a % 6;
+    beg[a] = map.start[full];
+    end[a] = map.start[full + 1];
+  }
+  for (int a = 0; a < 18; ++a)
+    for (int pa = beg[a]; pa < end[a]; ++pa) {
+      const int ia = map.index[pa];
+      const double ca = map.coef[pa];
+      for (int b = 0; b < 18; ++b)
+        for (int pb = beg[b]; pb < end[b]; ++pb) {
+          const int ib = map.index[pb];
+          if (ib > ia) continue;  // lower triangle only
+          triplets.emplace_back(ia, ib, ca * map.coef[pb] * Ke(a, b));
+        }
+    }
+}
+
+// K_hat = T^T K T, lower triangle.
+SparseMatrix assemble_stiffness(const ShellModel& m, const DofMap& map, const ShellElementOptions& element) {
+  const int n_elem = static_cast<int>(m.triangles.size());
+  std::vector<Eigen::Triplet<double, int>> triplets;
+  triplets.reserve(static_cast<size_t>(n_elem) * 171);  // 18*19/2 per element
+  for (int e = 0; e < n_elem; ++e) {
+    const auto& t = m.triangles[e];
+    const Matrix18d Ke = shell_element_stiffness({m.nodes[t[0]], m.nodes[t[1]], m.nodes[t[2]]}, m.material, element);
+    add_element_triplets(triplets, map, t, Ke);
+  }
+  SparseMatrix K(map.reduced, map.reduced);
+  K.setFromTriplets(triplets.begin(), triplets.end());
+  return K;
+}
+
+// f_hat = T^T f.
+Eigen::VectorXd assemble_load(const ShellModel& m, const DofMap& map) {
+  const int n_nodes = static_cast<int>(m.nodes.size());
+  Eigen::VectorXd f = Eigen::VectorXd::Zero(map.reduced);
+  std::vector<Vector6d> f_full(n_nodes, Vector6d::Zero());
+  for (const NodalLoad& load : m.loads) {
+    f_full[load.node].head<3>() += load.force;
+    f_full[load.node].tail<3>() += load.moment;
+  }
+  for (int i = 0; i < n_nodes; ++i)
+    for (int d = 0; d < 6; ++d)
+      for (int p = map.start[6 * i + d]; p < map.start[6 * i + d + 1]; ++p)
+        f(map.index[p]) += map.coef[p] * f_full[i](d);
+  return f;
+}
+
+// u = T u_hat.
+std::vector<Vector6d> expand_displacements(const DofMap& map, const Eigen::VectorXd& uh, int n_nodes) {
+  std::vector<Vector6d> u(n_nodes, Vector6d::Zero());
+  for (int i = 0; i < n_nodes; ++i)
+    for (int d = 0; d < 6; ++d) {
+      double v = 0;
+      for (int p = map.start[6 * i + d]; p < map.start[6 * i + d + 1]; ++p) v += map.coef[p] * uh(map.index[p]);
+      u[i](d) = v;
+    }
+  return u;
+}
+
+// The model's load node, else the loaded node that moves most (-1 without loads).
+int deflection_node(const ShellModel& m, const std::vector<Vector6d>& u) {
+  if (m.load_node >= 0) return m.load_node;
+  int node = -1;
+  double best = -1;
+  for (const NodalLoad& load : m.loads) {
+    const double d = u[load.node].head<3>().norm();
+    if (d > best) {
+      best = d;
+      node = load.node;
+    }
+  }
+  return node;
+}
+
+void element_stresses(const ShellModel& m, const ShellElementOptions& element, ShellResult& res) {
+  const int n_elem = static_cast<int>(m.triangles.size());
+  res.von_mises_top.resize(n_elem);
+  res.von_mises_bottom.resize(n_elem);
+  for (int e = 0; e < n_elem; ++e) {
+    const auto& t = m.triangles[e];
+    Vector18d ue;
+    for (int k = 0; k < 3; ++k) ue.segment<6>(6 * k) = res.displacements[t[k]];
+    const ShellStress st = shell_element_stress({m.nodes[t[0]], m.nodes[t[1]], m.nodes[t[2]]}, m.material, ue, element);
+    res.von_mises_top[e] = st.von_mises_top;
+    res.von_mises_bottom[e] = st.von_mises_bottom;
+  }
+}
+
+struct MeshSizes {
+  std::vector<Vec3> centroid;     // #E, m
+  std::vector<double> node_size;  // #N, longest incident edge, m
+};
+
+MeshSizes mesh_sizes(const ShellModel& m) {
+  MeshSizes ms;
+  ms.centroid.resize(m.triangles.size());
+  ms.node_size.assign(m.nodes.size(), 0.0);
+  for (size_t e = 0; e < m.triangles.size(); ++e) {
+    const auto& t = m.triangles[e];
+    ms.centroid[e] = (m.nodes[t[0]] + m.nodes[t[1]] + m.nodes[t[2]]) / 3.0;
+    for (int k = 0; k < 3; ++k) {
+      const double len = (m.nodes[t[(k + 1) % 3]] - m.nodes[t[k]]).norm();
+      ms.node_size[t[k]] = std::max(ms.node_size[t[k]], len);
+      ms.node_size[t[(k + 1) % 3]] = std::max(ms.node_size[t[(k + 1) % 3]], len);
+    }
+  }
+  return ms;
+}
+
+struct SingularPoints {
+  std::vector<int> nodes;      // singular nodes that carry elements
+  std::vector<double> radius;  // #N, m, exclusion radius of each singular point
+  double rmax = 0;             // m, largest radius
+};
+
+// Singular points: supported nodes, rigid-link nodes that carry elements, and
+// re-entrant corners of the boundary.
+SingularPoints singular_points(const ShellModel& m, const std::vector<int>& reentrant_corners, const std::vector<double>& node_size,
+                               const ShellSolveOptions& options) {
+  const int n_nodes = static_cast<int>(m.nodes.size());
+  std::vector<char> singular(n_nodes, 0);
+  for (const NodeSupport& sp : m.supports) singular[sp.node] = 1;
+  for (const RigidLink& link : m.rigid_links) {
+    singular[link.master] = 1;
+    for (int sl : link.slaves) singular[sl] = 1;
+  }
+  for (int i : reentrant_corners) singular[i] = 1;
+  SingularPoints sp;
+  const double base_radius = options.stress_exclusion_thicknesses * m.material.thickness;
+  sp.radius.assign(n_nodes, 0.0);
+  for (int i : reentrant_corners) sp.radius[i] = base_radius + std::max(node_size[i], options.reentrant_corner_clearance);
+  for (int i = 0; i < n_nodes; ++i)
+    if (singular[i] && node_size[i] > 0) {
+      sp.nodes.push_back(i);
+      sp.radius[i] = std::max(sp.radius[i], base_radius + node_size[i]);
+      sp.rmax = std::max(sp.rmax, sp.radius[i]);
+    }
+  return sp;
+}
+
+// Uniform hash grid of cell `cell` (m): a centroid only needs its 27 neighbour cells.
+struct CellKey {
+  double cell;
+  std::int64_t operator()(const Vec3& p, int dx, int dy, int dz) const {
+    const auto c = [this](double v, int d) { return static_cast<std::int64_t>(std::floor(v / cell)) + d; };
+    return (c(p.x(), dx) * 73856093) ^ (c(p.y(), dy) * 19349663) ^ (c(p.z(), dz) * 83492791);
+  }
+};
+
+// #E: true where the element's centroid lies within a singular point's radius.
+std::vector<bool> elements_near_singular_points(const ShellModel& m, const std::vector<Vec3>& centroid, const SingularPoints& sp) {
+  const int n_elem = static_cast<int>(m.triangles.size());
+  std::vector<bool> excluded(n_elem, false);
+  if (sp.nodes.empty() || !(sp.rmax > 0)) return excluded;
+  const CellKey key{sp.rmax};
+  std::unordered_map<std::int64_t, std::vector<int>> grid;
+  for (int i : sp.nodes) grid[key(m.nodes[i], 0, 0, 0)].push_back(i);
+  for (int e = 0; e < n_elem; ++e) {
+    bool near = false;
+    for (int dx = -1; dx <= 1 && !near; ++dx)
+      for (int dy = -1; dy <= 1 && !near; ++dy)
+        for (int dz = -1; dz <= 1 && !near; ++dz) {
+          auto it = grid.find(key(centroid[e], dx, dy, dz));
+          if (it == grid.end()) continue;
+          for (int i : it->second) {
+            if ((centroid[e] - m.nodes[i]).squaredNorm() < sp.radius[i] * sp.radius[i]) {
+              near = true;
+              break;
+            }
+          }
+        }
+    excluded[e] = near;
+  }
+  return excluded;
+}
+
+void take_max_von_mises(ShellResult& res, bool honour_rule) {
+  res.max_von_mises = 0;
+  res.max_von_mises_element = -1;
+  for (int e = 0; e < static_cast<int>(res.von_mises_top.size()); ++e) {
+    if (honour_rule && res.stress_excluded[e]) continue;
+    const double v = std::max(res.von_mises_top[e], res.von_mises_bottom[e]);
+    if (v > res.max_von_mises || res.max_von_mises_element < 0) {
+      res.max_von_mises = v;
+      res.max_von_mises_element = e;
+    }
+  }
+}
+
+// Element stresses, the elements the stress rule leaves out, the maximum over
+// the rest and the margin of safety.
+void apply_stress_rule(const ShellModel& m, const ShellSolveOptions& options, ShellResult& res) {
+  element_stresses(m, options.element, res);
+  const MeshSizes sizes = mesh_sizes(m);
+  res.reentrant_corners = find_reentrant_corners(m, options.reentrant_corner_angle);
+  const SingularPoints sp = singular_points(m, res.reentrant_corners, sizes.node_size, options);
+  res.stress_excluded = elements_near_singular_points(m, sizes.centroid, sp);
+  take_max_von_mises(res, true);
+  if (res.max_von_mises_element < 0) {
+    res.stress_rule_fell_back = true;
+    take_max_von_mises(res, false);
+  }
+  res.margin_of_safety = res.max_von_mises > 0
+                             ? m.material.yield_strength / (options.safety_factor * res.max_von_mises) - 1.0
+                             : std::numeric_limits<double>::infinity();
+}
+
 }  // namespace
 
 struct ShellSolver::Impl {
@@ -320,6 +572,41 @@ struct ShellSolver::Impl {
   int analyses = 0;
   CholmodLlt cholmod;
   EigenLdlt ldlt;
+
+  // Factorises K, reusing the symbolic analysis while the pattern repeats
+  // (returns whether it did); throws on a singular K.
+  bool factorise(const SparseMatrix& K, ShellSolverBackend use, double singular_pivot_ratio) {
+    const std::uint64_t h = pattern_hash(K);
+    const bool reuse = analysed && hash == h && backend == use;
+    const Eigen::VectorXd diag = K.diagonal();
+    double pivot_ratio = 1.0;
+    bool ok = true;
+    if (use == ShellSolverBackend::kCholmodSupernodal) {
+      if (!reuse) cholmod.analyzePattern(K);
+      cholmod.factorize(K);
+      ok = cholmod.info() == Eigen::Success;
+      if (ok) pivot_ratio = cholmod.min_pivot_ratio(diag);
+    } else {
+      if (!reuse) ldlt.analyzePattern(K);
+      ldlt.factorize(K);
+      ok = ldlt.info() == Eigen::Success;
+      if (ok) pivot_ratio = min_pivot_ratio(ldlt, diag);
+    }
+    analysed = true;
+    hash = h;
+    backend = use;
+    if (!reuse) ++analyses;
+    if (!ok || !(pivot_ratio > singular_pivot_ratio)) {
+      analysed = false;  // a failed factor leaves the solver in an unknown state
+      throw FemError("stiffness", "the stiffness matrix is singular (smallest pivot ratio " + str(pivot_ratio) +
+                                      "): the supports leave a rigid-body mode or a mechanism free");
+    }
+    return reuse;
+  }
+
+  Eigen::VectorXd solve(const Eigen::VectorXd& f, ShellSolverBackend use) {
+    return use == ShellSolverBackend::kCholmodSupernodal ? Eigen::VectorXd(cholmod.solve(f)) : Eigen::VectorXd(ldlt.solve(f));
+  }
 };
 
 ShellSolver::ShellSolver() : impl_(std::make_unique<Impl>()) {}
@@ -331,210 +618,30 @@ int ShellSolver::symbolic_analyses() const { return impl_->analyses; }
 ShellResult ShellSolver::solve(const ShellModel& m, const ShellSolveOptions& options) {
   validate_shell_model(m);
   ShellResult res;
-  const int n_nodes = static_cast<int>(m.nodes.size());
-  const int n_elem = static_cast<int>(m.triangles.size());
 
-  // ---- assemble K_hat = T^T K T (lower triangle) and f_hat = T^T f.
   auto t0 = Clock::now();
   const DofMap map = build_dof_map(m);
-  const int N = map.reduced;
-  res.reduced_dofs = N;
-  if (N == 0) throw FemError("supports", "every DOF is fixed; there is nothing to solve");
-  std::vector<Eigen::Triplet<double, int>> triplets;
-  triplets.reserve(static_cast<size_t>(n_elem) * 171);  // 18*19/2 per element
-  for (int e = 0; e < n_elem; ++e) {
-    const auto& t = m.triangles[e];
-    const Matrix18d Ke = shell_element_stiffness({m.nodes[t[0]], m.nodes[t[1]], m.nodes[t[2]]}, m.material,
-                                                 options.element);
-    int beg[18], end[18];
-    for (int a = 0; a < 18; ++a) {
-      const int full = 6 * t[a / 6] + a % 6;
-      beg[a] = map.start[full];
-      end[a] = map.start[full + 1];
-    }
-    for (int a = 0; a < 18; ++a)
-      for (int pa = beg[a]; pa < end[a]; ++pa) {
-        const int ia = map.index[pa];
-        const double ca = map.coef[pa];
-        for (int b = 0; b < 18; ++b)
-          for (int pb = beg[b]; pb < end[b]; ++pb) {
-            const int ib = map.index[pb];
-            if (ib > ia) continue;  // lower triangle only
-            triplets.emplace_back(ia, ib, ca * map.coef[pb] * Ke(a, b));
-          }
-      }
-  }
-  SparseMatrix K(N, N);
-  K.setFromTriplets(triplets.begin(), triplets.end());
-  triplets.clear();
-  triplets.shrink_to_fit();
-  Eigen::VectorXd f = Eigen::VectorXd::Zero(N);
-  std::vector<Vector6d> f_full(n_nodes, Vector6d::Zero());
-  for (const NodalLoad& load : m.loads) {
-    f_full[load.node].head<3>() += load.force;
-    f_full[load.node].tail<3>() += load.moment;
-  }
-  for (int i = 0; i < n_nodes; ++i)
-    for (int d = 0; d < 6; ++d)
-      for (int p = map.start[6 * i + d]; p < map.start[6 * i + d + 1]; ++p)
-        f(map.index[p]) += map.coef[p] * f_full[i](d);
+  res.reduced_dofs = map.reduced;
+  if (map.reduced == 0) throw FemError("supports", "every DOF is fixed; there is nothing to solve");
+  const SparseMatrix K = assemble_stiffness(m, map, options.element);
+  const Eigen::VectorXd f = assemble_load(m, map);
   res.assemble_seconds = seconds_since(t0);
 
-  // ---- factorise, reusing the symbolic analysis while the pattern repeats.
   t0 = Clock::now();
-  Impl& s = *impl_;
-  const std::uint64_t h = pattern_hash(K);
-  const bool reuse = s.analysed && s.hash == h && s.backend == options.backend;
-  res.pattern_reused = reuse;
-  const Eigen::VectorXd diag = K.diagonal();
-  double pivot_ratio = 1.0;
-  bool ok = true;
-  if (options.backend == ShellSolverBackend::kCholmodSupernodal) {
-    if (!reuse) s.cholmod.analyzePattern(K);
-    s.cholmod.factorize(K);
-    ok = s.cholmod.info() == Eigen::Success;
-    if (ok) pivot_ratio = s.cholmod.min_pivot_ratio(diag);
-  } else {
-    if (!reuse) s.ldlt.analyzePattern(K);
-    s.ldlt.factorize(K);
-    ok = s.ldlt.info() == Eigen::Success;
-    if (ok) {
-      const Eigen::VectorXd& D = s.ldlt.vectorD();
-      const auto& P = s.ldlt.permutationP().indices();
-      Eigen::VectorXd pdiag(N);
-      for (int i = 0; i < N; ++i) pdiag(P(i)) = diag(i);
-      pivot_ratio = std::numeric_limits<double>::infinity();
-      for (int j = 0; j < N; ++j) pivot_ratio = std::min(pivot_ratio, pdiag(j) > 0 ? D(j) / pdiag(j) : 0.0);
-    }
-  }
-  s.analysed = true;
-  s.hash = h;
-  s.backend = options.backend;
-  if (!reuse) ++s.analyses;
-  if (!ok || !(pivot_ratio > options.singular_pivot_ratio)) {
-    s.analysed = false;  // a failed factor leaves the solver in an unknown state
-    throw FemError("stiffness", "the stiffness matrix is singular (smallest pivot ratio " + str(pivot_ratio) +
-                                    "): the supports leave a rigid-body mode or a mechanism free");
-  }
+  res.pattern_reused = impl_->factorise(K, options.backend, options.singular_pivot_ratio);
   res.factor_seconds = seconds_since(t0);
 
-  // ---- solve and expand u = T u_hat.
   t0 = Clock::now();
-  const Eigen::VectorXd uh = options.backend == ShellSolverBackend::kCholmodSupernodal
-                                 ? Eigen::VectorXd(s.cholmod.solve(f))
-                                 : Eigen::VectorXd(s.ldlt.solve(f));
+  const Eigen::VectorXd uh = impl_->solve(f, options.backend);
   if (!uh.allFinite()) throw FemError("solution", "the solve produced non-finite displacements");
-  res.displacements.assign(n_nodes, Vector6d::Zero());
-  for (int i = 0; i < n_nodes; ++i)
-    for (int d = 0; d < 6; ++d) {
-      double v = 0;
-      for (int p = map.start[6 * i + d]; p < map.start[6 * i + d + 1]; ++p) v += map.coef[p] * uh(map.index[p]);
-      res.displacements[i](d) = v;
-    }
+  res.displacements = expand_displacements(map, uh, static_cast<int>(m.nodes.size()));
   res.compliance = f.dot(uh);
-  if (m.load_node >= 0) {
-    res.load_node = m.load_node;
-  } else {
-    double best = -1;
-    for (const NodalLoad& load : m.loads) {
-      const double d = res.displacements[load.node].head<3>().norm();
-      if (d > best) {
-        best = d;
-        res.load_node = load.node;
-      }
-    }
-  }
+  res.load_node = deflection_node(m, res.displacements);
   if (res.load_node >= 0) res.load_deflection = res.displacements[res.load_node].head<3>().norm();
   res.solve_seconds = seconds_since(t0);
 
-  // ---- stresses and the stress rule.
   t0 = Clock::now();
-  res.von_mises_top.resize(n_elem);
-  res.von_mises_bottom.resize(n_elem);
-  res.stress_excluded.assign(n_elem, false);
-  std::vector<Vec3> centroid(n_elem);
-  std::vector<double> node_size(n_nodes, 0.0);  // longest incident edge, m
-  for (int e = 0; e < n_elem; ++e) {
-    const auto& t = m.triangles[e];
-    Vector18d ue;
-    for (int k = 0; k < 3; ++k) ue.segment<6>(6 * k) = res.displacements[t[k]];
-    const ShellStress st =
-        shell_element_stress({m.nodes[t[0]], m.nodes[t[1]], m.nodes[t[2]]}, m.material, ue, options.element);
-    res.von_mises_top[e] = st.von_mises_top;
-    res.von_mises_bottom[e] = st.von_mises_bottom;
-    centroid[e] = (m.nodes[t[0]] + m.nodes[t[1]] + m.nodes[t[2]]) / 3.0;
-    for (int k = 0; k < 3; ++k) {
-      const double len = (m.nodes[t[(k + 1) % 3]] - m.nodes[t[k]]).norm();
-      node_size[t[k]] = std::max(node_size[t[k]], len);
-      node_size[t[(k + 1) % 3]] = std::max(node_size[t[(k + 1) % 3]], len);
-    }
-  }
-  // Singular points: supported nodes, rigid-link nodes that carry elements, and
-  // re-entrant corners of the boundary.
-  std::vector<char> singular(n_nodes, 0);
-  for (const NodeSupport& sp : m.supports) singular[sp.node] = 1;
-  for (const RigidLink& link : m.rigid_links) {
-    singular[link.master] = 1;
-    for (int sl : link.slaves) singular[sl] = 1;
-  }
-  res.reentrant_corners = find_reentrant_corners(m, options.reentrant_corner_angle);
-  for (int i : res.reentrant_corners) singular[i] = 1;
-  std::vector<int> points;
-  double rmax = 0;
-  const double base_radius = options.stress_exclusion_thicknesses * m.material.thickness;
-  std::vector<double> radius(n_nodes, 0.0);  // m, exclusion radius of each singular point
-  for (int i : res.reentrant_corners) radius[i] = base_radius + std::max(node_size[i], options.reentrant_corner_clearance);
-  for (int i = 0; i < n_nodes; ++i)
-    if (singular[i] && node_size[i] > 0) {
-      points.push_back(i);
-      radius[i] = std::max(radius[i], base_radius + node_size[i]);
-      rmax = std::max(rmax, radius[i]);
-    }
-  if (!points.empty() && rmax > 0) {
-    // Uniform hash grid of cell rmax: a centroid only needs its 27 neighbour cells.
-    auto key = [rmax](const Vec3& p, int dx, int dy, int dz) {
-      const auto c = [rmax](double v, int d) { return static_cast<std::int64_t>(std::floor(v / rmax)) + d; };
-      return (c(p.x(), dx) * 73856093) ^ (c(p.y(), dy) * 19349663) ^ (c(p.z(), dz) * 83492791);
-    };
-    std::unordered_map<std::int64_t, std::vector<int>> grid;
-    for (int i : points) grid[key(m.nodes[i], 0, 0, 0)].push_back(i);
-    for (int e = 0; e < n_elem; ++e) {
-      bool excluded = false;
-      for (int dx = -1; dx <= 1 && !excluded; ++dx)
-        for (int dy = -1; dy <= 1 && !excluded; ++dy)
-          for (int dz = -1; dz <= 1 && !excluded; ++dz) {
-            auto it = grid.find(key(centroid[e], dx, dy, dz));
-            if (it == grid.end()) continue;
-            for (int i : it->second) {
-              if ((centroid[e] - m.nodes[i]).squaredNorm() < radius[i] * radius[i]) {
-                excluded = true;
-                break;
-              }
-            }
-          }
-      res.stress_excluded[e] = excluded;
-    }
-  }
-  auto take_max = [&](bool honour_rule) {
-    res.max_von_mises = 0;
-    res.max_von_mises_element = -1;
-    for (int e = 0; e < n_elem; ++e) {
-      if (honour_rule && res.stress_excluded[e]) continue;
-      const double v = std::max(res.von_mises_top[e], res.von_mises_bottom[e]);
-      if (v > res.max_von_mises || res.max_von_mises_element < 0) {
-        res.max_von_mises = v;
-        res.max_von_mises_element = e;
-      }
-    }
-  };
-  take_max(true);
-  if (res.max_von_mises_element < 0) {
-    res.stress_rule_fell_back = true;
-    take_max(false);
-  }
-  res.margin_of_safety = res.max_von_mises > 0
-                             ? m.material.yield_strength / (options.safety_factor * res.max_von_mises) - 1.0
-                             : std::numeric_limits<double>::infinity();
+  apply_stress_rule(m, options, res);
   res.stress_seconds = seconds_since(t0);
   return res;
 }
