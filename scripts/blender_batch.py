@@ -20,8 +20,10 @@ import sys
 import time
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
-sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-import blender_addon_loader  # noqa: E402
+# Blender runs this file by path and no PYTHONPATH reaches its Python: the one
+# bootstrap line that makes the tools package importable (tools/sheetgen_tools/__init__.py).
+sys.path.insert(0, os.path.join(ROOT, "tools"))
+from sheetgen_tools import addon_loader  # noqa: E402
 
 
 def parse_args(argv):
@@ -41,7 +43,7 @@ def main(argv):
     args = parse_args(argv)
     t0 = time.monotonic()
     import bpy
-    blender_addon_loader.enable_addon(args.build_dir)
+    addon_loader.enable_addon(args.build_dir)
     from sheetgen_blender import generate, native, render
     from sheetgen_blender.core import result as core_result
     from sheetgen_blender.core.problem import ProblemError

@@ -11,8 +11,11 @@ import os
 import sys
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
-SCENES = ("shelf", "corner", "wall_standoff", "corner_obstacle", "slanted", "sharp_angles", "boxed_in", "bulkhead_hole",
-          "maze", "avionics_bay")
+# Blender runs this file by path and no PYTHONPATH reaches its Python: the one
+# bootstrap line that makes the tools package importable (tools/sheetgen_tools/__init__.py).
+sys.path.insert(0, os.path.join(ROOT, "tools"))
+from sheetgen_tools import addon_loader, paths  # noqa: E402
+from sheetgen_tools.scenes import LIBRARY  # noqa: E402
 
 
 def frame_views(scene):
@@ -38,16 +41,11 @@ def frame_views(scene):
 
 
 def main(names):
-    import addon_utils
     import bpy
-    for p in (os.path.join(ROOT, "build", "python"), os.path.join(ROOT, "blender_addon")):
-        if p not in sys.path:
-            sys.path.insert(0, p)
     for name in names:
         bpy.ops.wm.read_homefile(use_empty=True)
-        if not hasattr(bpy.types.Scene, "sheetgen"):
-            addon_utils.enable("sheetgen_blender", default_set=False, handle_error=None)
-        src = os.path.join(ROOT, "sample_scenes", name, "problem.json")
+        addon_loader.enable_addon()
+        src = paths.scene_problem(name)
         res = bpy.ops.sheetgen.import_problem(filepath=src)
         if res != {'FINISHED'}:
             raise RuntimeError("import of %s failed" % src)
@@ -58,11 +56,11 @@ def main(names):
         scene.unit_settings.scale_length = 1.0
         scene.render.resolution_x, scene.render.resolution_y = 640, 400
         frame_views(scene)
-        out = os.path.join(ROOT, "sample_scenes", name, "scene.blend")
+        out = os.path.join(paths.SAMPLE_SCENES, name, "scene.blend")
         bpy.ops.wm.save_as_mainfile(filepath=out, compress=True)
         print("wrote %s" % out)
 
 
 if __name__ == "__main__":
     argv = sys.argv[sys.argv.index("--") + 1:] if "--" in sys.argv else []
-    main(argv or SCENES)
+    main(argv or LIBRARY)

@@ -21,6 +21,10 @@ import sys
 import tempfile
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+# Blender runs this file by path (step 2) and no PYTHONPATH reaches its Python:
+# the one bootstrap line that makes the tools package importable (tools/sheetgen_tools/__init__.py).
+sys.path.insert(0, os.path.join(ROOT, "tools"))
+from sheetgen_tools import addon_loader  # noqa: E402
 IMAGES = os.path.join(ROOT, "docs", "images")
 SCENES = ("corner", "corner_obstacle", "slanted")
 
@@ -71,13 +75,8 @@ def driver(argv):
 
 def ui(png):
     """Inside Blender with a window: show the Sheet Metal sidebar, screenshot once the UI has drawn, quit."""
-    import addon_utils
     import bpy
-    for p in (os.path.join(ROOT, "build", "python"), os.path.join(ROOT, "blender_addon")):
-        if p not in sys.path:
-            sys.path.insert(0, p)
-    if not hasattr(bpy.types.Scene, "sheetgen"):
-        addon_utils.enable("sheetgen_blender", default_set=False, handle_error=None)
+    addon_loader.enable_addon()
     state = {"step": 0}
 
     def view3d():

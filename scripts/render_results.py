@@ -27,8 +27,10 @@ import sys
 import time
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
-sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-import blender_addon_loader  # noqa: E402
+# Blender runs this file by path and no PYTHONPATH reaches its Python: the one
+# bootstrap line that makes the tools package importable (tools/sheetgen_tools/__init__.py).
+sys.path.insert(0, os.path.join(ROOT, "tools"))
+from sheetgen_tools import addon_loader  # noqa: E402
 PREFIX = "render_results: "
 LARGE_RES = (960, 600)       # px: scenes with many loads (the avionics bay) have small parts in a large frame
 LARGE_SAMPLES = 16           # Cycles samples at LARGE_RES: keeps the render near 10 s on 2 cores
@@ -63,7 +65,7 @@ def parse_args(argv):
 
 def enable_addon(build_dir):
     try:
-        blender_addon_loader.enable_addon(build_dir)
+        addon_loader.enable_addon(build_dir)
     except RuntimeError as e:
         raise InputError(str(e)) from None
 
