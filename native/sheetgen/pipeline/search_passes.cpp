@@ -1,0 +1,191 @@
+#include "sheetgen/pipeline/search_passes.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <cstdlib>
+#include <set>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "sheetgen/env/environment.hpp"
+
+namespace sheetgen {
+
+namespace {
+
+double seconds_since(std::chrono::steady_clock::time_point t) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t).count();
+}
+
+bool cancel_requested(const GenerateProgress* progress) { return progress && progress->cancel.load(); }
+
+ComposeProgress* compose_progress(GenerateProgress* progress) { return progress ? &progress->compose : nullptr; }
+
+// The final check at the default mesh, down a list of valid candidates,
+// cheapest first: the first that passes is the answer. Remembers the parts it
+// rejected, so the list of a rerun skips them.
+struct FinalCheck {
+  const Problem& scene;
+  const Environment& env;
+  int load_index;
+  double bend_cost;  // m^2 per bend, the composition's lambda
+  bool web_roots;    // for the debug line
+  std::set<std::pair<std::vector<int>, double>> failed;  // (segments, cost) of parts rejected
+  std::string reason;  // why the cheapest analysed part failed, when one did
+
+  // Sets out.part and out.ok when a candidate passes; counts the analyses.
+  void run(const std::vector<Candidate>& valid, LoadOutcome& out) {
+    for (const Candidate& c : valid) {
+      if (failed.count({c.segments, c.cost})) continue;
+      const auto tc = std::chrono::steady_clock::now();
+      Candidate checked = evaluate_part(scene, env, load_index, c, 0.0, bend_cost);
+      ++out.fem_calls;
+      if (std::getenv("SHEETGEN_COMPOSE_DEBUG"))
+        std::fprintf(stderr, "[final check] %s%s: %s in %.2f s\n", out.load.c_str(), web_roots ? " (web roots)" : "",
+                     checked.valid() ? "valid" : "fails", seconds_since(tc));
+      if (checked.valid()) {
+        out.part = checked;
+        out.ok = true;
+        return;
+      }
+      failed.insert({c.segments, c.cost});
+      if (reason.empty() && checked.analysed)
+        reason = "at the default mesh the cheapest part misses its limits (compliance " + std::to_string(checked.fem.compliance) +
+                 " J, limit " + std::to_string(checked.fem.compliance_limit) + " J, MS " + std::to_string(checked.fem.margin_of_safety) + ")";
+    }
+  }
+};
+
+// Composition of the discovered library and the final check of its valid
+// parts; fills the composition's fields of `out`. False when cancelled.
+bool compose_and_check(const Problem& scene, const Environment& env, int li, const DiscoveryResult& found,
+                       const GenerateOptions& options, bool web_roots, GenerateProgress* progress, LoadOutcome& out) {
+  ComposeOptions copt = options.compose;
+  copt.beam_width = scene.search.beam_width;
+  copt.threads = scene.search.threads;
+  const auto t0 = std::chrono::steady_clock::now();
+  ComposeResult composed = compose_part(scene, env, li, found.base, found.library, copt, compose_progress(progress));
+  if (composed.cancelled || cancel_requested(progress)) return false;
+  FinalCheck check{scene, env, li, copt.bend_cost, web_roots, {}, {}};
+  check.run(composed.valid, out);
+  out.skipped_by_cost = composed.skipped_by_cost;
+  out.screen_fem_calls = composed.screen_fem_calls;
+  out.screened_out = composed.screened_out;
+  // Every kept part failed at the default mesh while the cost bound left dearer
+  // ones unanalysed: search again without the bound, which finds exactly the
+  // valid parts of an unbounded search (docs/pipeline.md "Cost bound").
+  if (!out.ok && composed.skipped_by_cost > 0) {
+    ComposeOptions unbounded = copt;
+    unbounded.kept_valid = 0;
+    ComposeResult again = compose_part(scene, env, li, found.base, found.library, unbounded, compose_progress(progress));
+    if (again.cancelled || cancel_requested(progress)) return false;
+    out.fem_calls += composed.fem_calls;
+    out.screen_fem_calls += again.screen_fem_calls;
+    out.composition_reruns = 1;
+    composed = std::move(again);
+    check.run(composed.valid, out);
+  }
+  out.history = composed.history;
+  out.fem_calls += composed.fem_calls;
+  out.self_rivet_candidates = composed.self_rivet_candidates;
+  out.lip_candidates = composed.lip_candidates;
+  out.composition_seconds = seconds_since(t0);
+  if (!out.ok) {
+    out.part = composed.found ? composed.valid.front() : composed.closest;
+    out.reason = composed.found ? check.reason : composed.reason;
+  }
+  return true;
+}
+
+// One search for one load: discovery, then composition and the final check.
+// Fills the search's fields of `out` (answer or closest candidate, reason,
+// statistics, history, times); false when it was cancelled.
+bool search_pass(const Problem& scene, const Environment& env, int li, const GenerateOptions& options, bool web_roots,
+                 GenerateProgress* progress, LoadOutcome& out) {
+  out.web_roots = web_roots;
+  if (progress) {
+    progress->web_roots = web_roots;
+    progress->stage = static_cast<int>(Stage::Discovery);
+  }
+  DiscoveryOptions dopt = DiscoveryOptions::from(scene);
+  dopt.web_roots = web_roots;
+  const auto t0 = std::chrono::steady_clock::now();
+  const DiscoveryResult found = discover_segments(scene, env, li, dopt, progress ? &progress->discovery : nullptr);
+  out.discovery_seconds = seconds_since(t0);
+  out.discovery = found.stats;
+  out.library_size = found.library.size();
+  if (found.cancelled || cancel_requested(progress)) return false;
+
+  if (progress) progress->stage = static_cast<int>(Stage::Composition);
+  return compose_and_check(scene, env, li, found, options, web_roots, progress, out);
+}
+
+// Of two answers without a valid part, is `a` nearer to valid than `b`? An
+// analysed candidate beats one that is not; then the larger of the compliance
+// and strength ratios (how far over the limits) decides.
+bool closer(const Candidate& a, const Candidate& b, const Problem& scene) {
+  if (a.analysed != b.analysed) return a.analysed;
+  if (!a.analysed) return false;
+  auto over = [&](const Candidate& c) {
+    const double stiff = c.fem.compliance_limit > 0 ? c.fem.compliance / c.fem.compliance_limit : 0.0;
+    const double ms_req = scene.requirements.min_margin_of_safety;
+    const double strong = (1.0 + ms_req) / std::max(1e-12, 1.0 + c.fem.margin_of_safety);
+    return std::max(stiff, strong);
+  };
+  return over(a) < over(b);
+}
+
+// A later search of the same load (web roots, flat extensions) against the
+// best so far: times and FEM calls count both; the later answer is kept when it
+// is valid or nearer to valid. True when it was kept.
+bool merge_pass(LoadOutcome& best, LoadOutcome&& pass, const Problem& scene) {
+  const double discovery_s = best.discovery_seconds + pass.discovery_seconds;
+  const double composition_s = best.composition_seconds + pass.composition_seconds;
+  const int fem_calls = best.fem_calls + pass.fem_calls;
+  const bool keep = pass.ok || closer(pass.part, best.part, scene);
+  if (keep) best = std::move(pass);
+  best.discovery_seconds = discovery_s;
+  best.composition_seconds = composition_s;
+  best.fem_calls = fem_calls;
+  return keep;
+}
+
+}  // namespace
+
+LoadSearch search_load(const Environment& env, int li, const LoadOutcome& start, const GenerateOptions& options,
+                       bool flat_fallback, GenerateProgress* progress) {
+  const Problem& scene = env.problem();
+  LoadSearch s;
+  LoadOutcome& first = s.answer;
+  first = start;
+  // Discovery and composition; when that finds no valid part, once more with
+  // web roots (docs/discovery.md "Web roots"): the plates of the first pass
+  // may be too soft where the way to the rivet areas is narrow.
+  s.finished = search_pass(scene, env, li, options, /*web_roots=*/false, progress, first);
+  if (s.finished && !first.ok && options.web_fallback && !cancel_requested(progress)) {
+    LoadOutcome webbed = start;
+    s.finished = search_pass(scene, env, li, options, /*web_roots=*/true, progress, webbed);
+    webbed.web_pass_tried = first.web_pass_tried = true;
+    merge_pass(first, std::move(webbed), scene);
+  }
+  // Still nothing: once more with flat extensions (a tab may continue its
+  // parent flat). Measured on the bay's data_recorder (docs/pipeline.md): the
+  // plain and web searches stay 26 % over its compliance limit, this one finds
+  // a valid part.
+  if (s.finished && !first.ok && flat_fallback && !cancel_requested(progress)) {
+    Problem flat_scene = scene;
+    flat_scene.manufacturing.flat_extensions = true;
+    LoadOutcome flat = start;
+    if (progress) progress->flat_pass = true;
+    s.finished = search_pass(flat_scene, env, li, options, /*web_roots=*/false, progress, flat);
+    if (progress) progress->flat_pass = false;
+    flat.web_pass_tried = first.web_pass_tried;
+    flat.flat_pass_tried = first.flat_pass_tried = flat.flat_pass = true;
+    if (merge_pass(first, std::move(flat), scene)) s.flat_scene = std::move(flat_scene);
+  }
+  return s;
+}
+
+}  // namespace sheetgen

@@ -1,0 +1,30 @@
+#pragma once
+// The searches of one load (docs/pipeline.md "Pipeline per load"), internal to
+// the pipeline: discovery and composition on the search mesh, then the final
+// check at the default mesh down the valid candidates, cheapest first. A load
+// without a valid part is searched again with web roots, then with flat
+// extensions; the answer is the valid one, else the one nearest to valid.
+#include <optional>
+
+#include "sheetgen/core/problem.hpp"
+#include "sheetgen/pipeline/generate.hpp"
+
+namespace sheetgen {
+
+class Environment;
+
+struct LoadSearch {
+  bool finished = false;              // false: cancelled (the answer is incomplete)
+  LoadOutcome answer;                 // the load's outcome with the search's fields filled
+  // The scene of the flat-extension search when the answer comes from it: the
+  // answer's plan and structural model use that grammar too.
+  std::optional<Problem> flat_scene;
+};
+
+// `start` holds the load's fields known before the search (name, environment
+// time); `flat_fallback` is GenerateResult::flat_fallback (the options' wish,
+// off where flat extensions are already on).
+LoadSearch search_load(const Environment& env, int load_index, const LoadOutcome& start, const GenerateOptions& options,
+                       bool flat_fallback, GenerateProgress* progress);
+
+}  // namespace sheetgen
