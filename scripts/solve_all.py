@@ -1,49 +1,39 @@
 #!/usr/bin/python3
 """Solves the whole scene library with one command, verifies every output with
-tests/python/verify_result.py and prints a table (issue 8).
+sheetgen_tools.verify and prints a table (issue 8).
 
-    /usr/bin/python3 scripts/solve_all.py                      # default settings (10 chains x 1000 iterations)
-    /usr/bin/python3 scripts/solve_all.py --quick              # 6 chains x 300 iterations, for scene design
-    /usr/bin/python3 scripts/solve_all.py --scenes shelf,maze --chains 4 --iterations 200
-    /usr/bin/python3 scripts/solve_all.py --no-solve           # re-verify and re-print existing outputs
-    /usr/bin/python3 scripts/solve_all.py --no-verify          # solve only; verify later with --no-solve
-    /usr/bin/python3 scripts/solve_all.py --tabulate           # re-print the table from run.json and verify.log
+    PYTHONPATH=tools /usr/bin/python3 scripts/solve_all.py                 # default settings (10 chains x 1000 iterations)
+    PYTHONPATH=tools /usr/bin/python3 scripts/solve_all.py --quick         # 6 chains x 300 iterations, for scene design
+    PYTHONPATH=tools /usr/bin/python3 scripts/solve_all.py --scenes shelf,maze --chains 4 --iterations 200
+    PYTHONPATH=tools /usr/bin/python3 scripts/solve_all.py --no-solve      # re-verify and re-print existing outputs
+    PYTHONPATH=tools /usr/bin/python3 scripts/solve_all.py --no-verify     # solve only; verify later with --no-solve
+    PYTHONPATH=tools /usr/bin/python3 scripts/solve_all.py --tabulate      # re-print the table from run.json and verify.log
 
 Writes out/<scene>/ (sheetgen's result.json and per-load folders, plus solve.log,
 verify.log and run.json with the wall time, exit code and verify status) and
-out/summary.json (the table's rows, read by scripts/make_report.py). The
-avionics bay is solved twice: as given, and with --right-angles (the expert's
-practice of the paper's Sec. 6.2) into out/avionics_bay_right_angles/.
-Solves run one at a time (the machine is shared); --threads defaults to 2.
-Exit 0 when every run finished (exit 0 or 2 of sheetgen) and every produced
-part passed verification; 1 otherwise. Loads without a part are reported in the
-table ("loads ok" column and the reasons below it), not counted as failures.
+out/summary.json (the table's rows, in the library's order, read by
+scripts/make_report.py). The avionics bay is solved twice: as given, and with
+--right-angles (the expert's practice of the paper's Sec. 6.2) into
+out/avionics_bay_right_angles/. Solves run one at a time (the machine is
+shared); --threads defaults to 2. Exit 0 when every run finished (exit 0 or 2
+of sheetgen) and every produced part passed verification; 1 otherwise. Loads
+without a part are reported in the table ("loads ok" column and the reasons
+below it), not counted as failures.
 """
 import argparse
 import json
 import os
-import subprocess
 import sys
 import time
+import traceback
 
-ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
-SHEETGEN = os.path.join(ROOT, "build", "native", "cli", "sheetgen")
-VERIFY = os.path.join(ROOT, "tests", "python", "verify_result.py")
+from sheetgen_tools import paths, runner
+from sheetgen_tools.scenes import LIBRARY
+from sheetgen_tools.verify import SUMMARY, VerifyOptions, verify_output
 
-# The library in order of difficulty (docs/scenes.md). (run name, scene folder, extra sheetgen flags)
-RUNS = [
-    ("shelf", "shelf", []),
-    ("corner", "corner", []),
-    ("wall_standoff", "wall_standoff", []),
-    ("corner_obstacle", "corner_obstacle", []),
-    ("slanted", "slanted", []),
-    ("sharp_angles", "sharp_angles", []),
-    ("boxed_in", "boxed_in", []),
-    ("bulkhead_hole", "bulkhead_hole", []),
-    ("maze", "maze", []),
-    ("avionics_bay", "avionics_bay", []),
-    ("avionics_bay_right_angles", "avionics_bay", ["--right-angles"]),
-]
+# The library in order of difficulty (docs/scenes.md), then the bay at right
+# angles. (run name, scene folder, extra sheetgen flags)
+RUNS = [(scene, scene, ()) for scene in LIBRARY] + [("avionics_bay_right_angles", "avionics_bay", ("--right-angles",))]
 
 
 def summarise(run, out_dir, wall_s, exit_code, verify_status):
@@ -108,7 +98,7 @@ def verify_status_from_log(out_dir):
         return "not verified"
     lines = open(path).read().splitlines()
     n_parts = sum(p["status"] == "ok" for p in json.load(open(os.path.join(out_dir, "result.json")))["parts"])
-    if not lines or not lines[-1].startswith("verify_result:"):
+    if not lines or not lines[-1].startswith(SUMMARY.split(":")[0] + ":"):
         return "FAIL (verify crashed)"
     n_bad = len({l.split(":")[1].strip() for l in lines if l.startswith("FAIL:")})
     if n_bad:
@@ -116,9 +106,9 @@ def verify_status_from_log(out_dir):
     return "ok (%d part%s)" % (n_parts, "" if n_parts == 1 else "s") if n_parts else "n/a (no part)"
 
 
-def main():
+def parse_args():
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
-    ap.add_argument("--out", default=os.path.join(ROOT, "out"), help="output root (default out/)")
+    ap.add_argument("--out", default=os.path.join(paths.ROOT, "out"), help="output root (default out/)")
     ap.add_argument("--scenes", help="comma-separated run names (default: all): " + ",".join(r[0] for r in RUNS))
     ap.add_argument("--chains", type=int, help="override search.chains")
     ap.add_argument("--iterations", type=int, help="override search.iterations")
@@ -126,89 +116,101 @@ def main():
     ap.add_argument("--quick", action="store_true", help="--chains 6 --iterations 300 (scene design)")
     ap.add_argument("--threads", type=int, default=2)
     ap.add_argument("--no-solve", action="store_true", help="only verify and tabulate existing outputs")
-    ap.add_argument("--no-ccx", action="store_true", help="pass --no-ccx to verify_result.py")
+    ap.add_argument("--no-ccx", action="store_true", help="verify without CalculiX")
     ap.add_argument("--no-verify", action="store_true",
                     help="solve only (verify later with --no-solve; the bay's brute-force check takes ~20 min)")
     ap.add_argument("--tabulate", action="store_true",
                     help="neither solve nor verify: rebuild the table and summary.json from run.json and verify.log")
-    ap.add_argument("--sheetgen", default=SHEETGEN)
+    ap.add_argument("--sheetgen", default=paths.DEFAULT_SHEETGEN)
     args = ap.parse_args()
     if args.quick:
         args.chains = args.chains or 6
         args.iterations = args.iterations or 300
-    runs = RUNS
     if args.scenes:
-        want = args.scenes.split(",")
-        unknown = set(want) - {r[0] for r in RUNS}
+        unknown = set(args.scenes.split(",")) - {r[0] for r in RUNS}
         if unknown:
             ap.error("unknown scene(s): " + ", ".join(sorted(unknown)))
-        runs = [r for r in RUNS if r[0] in want]
-    if not args.no_solve and not os.path.exists(args.sheetgen):
-        sys.exit("sheetgen not found at %s (cmake --build build --target sheetgen)" % args.sheetgen)
-    os.makedirs(args.out, exist_ok=True)
+    if not args.no_solve and not args.tabulate and not os.path.exists(args.sheetgen):
+        ap.error("sheetgen not found at %s (cmake --build build --target sheetgen)" % args.sheetgen)
+    return args
 
+
+def solve(run, scene, flags, out_dir, args):
+    """Solves one run into out_dir (solve.log, run.json); returns run.json's content."""
+    options = runner.SolveOptions(threads=args.threads, chains=args.chains, iterations=args.iterations, seed=args.seed,
+                                  flags=flags, log=os.path.join(out_dir, "solve.log"), sheetgen=args.sheetgen)
+    cmd = runner.command(paths.scene_problem(scene), out_dir, options)
+    print("== %s: %s" % (run, " ".join(os.path.relpath(c, paths.ROOT) if c.startswith(paths.ROOT) else c for c in cmd)),
+          flush=True)
+    started = time.time()
+    solved = runner.solve(paths.scene_problem(scene), out_dir, options)
+    meta = {"run": run, "scene": scene, "command": solved.command, "wall_s": solved.wall_s, "exit": solved.exit_code,
+            "peak_rss_mb": solved.peak_rss_mb, "cpu_s": solved.cpu_s,
+            "sheetgen_mtime": time.strftime("%Y-%m-%d %H:%M:%S", time.gmtime(os.path.getmtime(args.sheetgen))),
+            "started_utc": time.strftime("%Y-%m-%d %H:%M:%S", time.gmtime(started))}
+    json.dump(meta, open(os.path.join(out_dir, "run.json"), "w"), indent=2)
+    print("   exit %d in %.0f s" % (solved.exit_code, solved.wall_s), flush=True)
+    return meta
+
+
+def verify(out_dir, args):
+    """Checks a run's parts into verify.log; returns (the verify column, passed)."""
+    options = VerifyOptions(calculix=not args.no_ccx, allow_no_part=True, sheetgen=args.sheetgen)
+    try:
+        report = verify_output(out_dir, options)
+        text, ok = report.text(), report.ok
+    except Exception:  # a crash of the checker is a failed check of this run, the others go on
+        text, ok = traceback.format_exc(), False
+    open(os.path.join(out_dir, "verify.log"), "w").write(text + "\n")
+    if not ok:
+        for line in text.splitlines():
+            if line.startswith("FAIL") or "Error" in line:
+                print("   " + line)
+    return verify_status_from_log(out_dir), ok
+
+
+def run_one(run, scene, flags, args):
+    """Solves (unless --no-solve or --tabulate) and verifies one run: (its table row, all good)."""
+    out_dir = os.path.join(args.out, run)
+    os.makedirs(out_dir, exist_ok=True)
+    out_dir = os.path.realpath(out_dir)  # result.json's problem path is relative to the real folder
+    meta_path = os.path.join(out_dir, "run.json")
+    if args.no_solve or args.tabulate:
+        meta = json.load(open(meta_path)) if os.path.exists(meta_path) else {"wall_s": None, "exit": None}
+    else:
+        meta = solve(run, scene, flags, out_dir, args)
+    good = meta.get("exit") in (0, 2, None)
+    if not os.path.exists(os.path.join(out_dir, "result.json")):
+        status, good = "no result", False
+    elif args.no_verify:
+        status = "not verified"
+    elif args.tabulate:
+        status = verify_status_from_log(out_dir)
+        good &= status.startswith(("ok", "n/a"))
+    else:
+        status, ok = verify(out_dir, args)
+        good &= ok
+    row = summarise(run, out_dir, meta.get("wall_s"), meta.get("exit"), status)
+    print("   " + "  ".join(str(c) for c in fmt_row(row)), flush=True)
+    return row, good
+
+
+def main():
+    args = parse_args()
+    runs = [r for r in RUNS if not args.scenes or r[0] in args.scenes.split(",")]
+    os.makedirs(args.out, exist_ok=True)
     rows, all_good = [], True
-    for run, scene, extra in runs:
-        problem = os.path.join(ROOT, "sample_scenes", scene, "problem.json")
-        out_dir = os.path.join(args.out, run)
-        os.makedirs(out_dir, exist_ok=True)
-        out_dir = os.path.realpath(out_dir)  # result.json's problem path is relative to the real folder
-        meta_path = os.path.join(out_dir, "run.json")
-        if args.no_solve or args.tabulate:
-            meta = json.load(open(meta_path)) if os.path.exists(meta_path) else {"wall_s": None, "exit": None}
-        else:
-            cmd = [args.sheetgen, "solve", problem, "--out", out_dir, "--threads", str(args.threads)] + extra
-            if args.chains:
-                cmd += ["--chains", str(args.chains)]
-            if args.iterations:
-                cmd += ["--iterations", str(args.iterations)]
-            if args.seed is not None:
-                cmd += ["--seed", str(args.seed)]
-            print("== %s: %s" % (run, " ".join(os.path.relpath(c, ROOT) if c.startswith(ROOT) else c for c in cmd)), flush=True)
-            t0 = time.monotonic()
-            with open(os.path.join(out_dir, "solve.log"), "w") as log:
-                proc = subprocess.Popen(cmd, stdout=log, stderr=subprocess.STDOUT)
-                _, status, usage = os.wait4(proc.pid, 0)  # the child's own peak memory and CPU time
-                code = os.waitstatus_to_exitcode(status)
-            meta = {"run": run, "scene": scene, "command": cmd, "wall_s": time.monotonic() - t0, "exit": code,
-                    "peak_rss_mb": usage.ru_maxrss / 1024.0, "cpu_s": usage.ru_utime + usage.ru_stime,
-                    "sheetgen_mtime": time.strftime("%Y-%m-%d %H:%M:%S", time.gmtime(os.path.getmtime(args.sheetgen))),
-                    "started_utc": time.strftime("%Y-%m-%d %H:%M:%S", time.gmtime(time.time() - (time.monotonic() - t0)))}
-            json.dump(meta, open(meta_path, "w"), indent=2)
-            print("   exit %d in %.0f s" % (code, meta["wall_s"]), flush=True)
-        if not os.path.exists(os.path.join(out_dir, "result.json")):
-            verify = "no result"
-            all_good = False
-        elif args.no_verify:
-            verify = "not verified"
-        elif args.tabulate:
-            verify = verify_status_from_log(out_dir)
-            all_good &= verify.startswith(("ok", "n/a"))
-        else:
-            vcmd = [sys.executable, VERIFY, out_dir, "--allow-no-part", "--sheetgen", args.sheetgen]
-            if args.no_ccx:
-                vcmd.append("--no-ccx")
-            v = subprocess.run(vcmd, stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True)
-            open(os.path.join(out_dir, "verify.log"), "w").write(v.stdout)
-            verify = verify_status_from_log(out_dir)
-            if v.returncode != 0:
-                all_good = False
-                for l in v.stdout.splitlines():
-                    if l.startswith("FAIL") or "Error" in l:
-                        print("   " + l)
-        if meta.get("exit") not in (0, 2, None):
-            all_good = False
-        row = summarise(run, out_dir, meta.get("wall_s"), meta.get("exit"), verify)
+    for run, scene, flags in runs:
+        row, good = run_one(run, scene, flags, args)
         rows.append(row)
-        print("   " + "  ".join(str(c) for c in fmt_row(row)), flush=True)
+        all_good &= good
 
     # Keep rows of runs not in this invocation (summary.json is the library's state).
     summary_path = os.path.join(args.out, "summary.json")
     old = json.load(open(summary_path)).get("rows", []) if os.path.exists(summary_path) else []
     merged = {r["run"]: r for r in old}
     merged.update({r["run"]: r for r in rows})
-    order = [r[0] for r in RUNS]
-    json.dump({"rows": [merged[k] for k in order if k in merged]}, open(summary_path, "w"), indent=2)
+    json.dump({"rows": [merged[r[0]] for r in RUNS if r[0] in merged]}, open(summary_path, "w"), indent=2)
     print()
     print_table(rows)
     sys.exit(0 if all_good else 1)
