@@ -8,7 +8,7 @@
    sweep of the deflection limit (--fig9-limits).
 3. Free angles vs --right-angles (the expert's practice) on the sample problems.
 
-Usage: bench/ablation_composition.py [--build build] [--seeds 1,2,3] [--quick]
+Usage: PYTHONPATH=tools /usr/bin/python3 bench/ablation_composition.py [--build build] [--seeds 1,2,3] [--quick]
 One solve at a time (the machine has 2 cores); --quick uses 6 chains x 400 iterations.
 """
 import argparse
@@ -22,21 +22,21 @@ import time
 
 import matplotlib
 matplotlib.use("Agg")
-import matplotlib.pyplot as plt
+import matplotlib.pyplot as plt  # noqa: E402
 
-ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+from sheetgen_tools import paths, runner  # noqa: E402
+from sheetgen_tools.problem import with_absolute_files  # noqa: E402
+
+ROOT = paths.ROOT
 
 
-def solve(sheetgen, problem, seed, extra, quick):
-    out = tempfile.mkdtemp(prefix="sheetgen_ablation_")
-    args = [sheetgen, "solve", problem, "--out", out, "--threads", "2", "--seed", str(seed)] + extra
-    if quick:
-        args += ["--chains", "6", "--iterations", "400"]
-    t0 = time.monotonic()
-    subprocess.run(args, capture_output=True, text=True)
-    wall = time.monotonic() - t0
-    r = json.load(open(os.path.join(out, "result.json")))
-    parts = r["parts"]
+def solve(sheetgen, problem, seed, flags, quick):
+    """One run (2 threads; --quick: 6 chains x 400 iterations) in a fresh folder,
+    summed over its loads; SolveError unless sheetgen finished."""
+    options = runner.SolveOptions(seed=seed, flags=tuple(flags), sheetgen=sheetgen,
+                                  chains=6 if quick else None, iterations=400 if quick else None)
+    solved = runner.solve(problem, tempfile.mkdtemp(prefix="sheetgen_ablation_"), options).check()
+    parts, wall, out = solved.parts, solved.wall_s, solved.out_dir
     ok = all(p["status"] == "ok" for p in parts)
     area = sum(p.get("area_m2", 0) for p in parts if p["status"] == "ok")
     comp = [p.get("compliance") for p in parts]
@@ -45,23 +45,9 @@ def solve(sheetgen, problem, seed, extra, quick):
             "reason": "; ".join(p.get("reason", "") for p in parts if p["status"] != "ok")}
 
 
-def main():
-    ap = argparse.ArgumentParser()
-    ap.add_argument("--build", default=os.path.join(ROOT, "build"))
-    ap.add_argument("--seeds", default="1,2,3")
-    ap.add_argument("--quick", action="store_true")
-    ap.add_argument("--fig14-scenes", default="corner,corner_obstacle")
-    ap.add_argument("--angle-scenes", default="corner,corner_obstacle,slanted")
-    ap.add_argument("--fig9-limits", default="1.0,0.5,0.45,0.4", help="deflection limits (mm) for the self-riveting sweep")
-    args = ap.parse_args()
-    seeds = [int(s) for s in args.seeds.split(",")]
-    sheetgen = os.path.join(args.build, "native", "cli", "sheetgen")
-    md = ["# Composition ablations (issue 6)", "",
-          "Made by `bench/ablation_composition.py%s` on %s (2 cores). One run at a time." %
-          (" --quick" if args.quick else "", time.strftime("%Y-%m-%d")), ""]
-
-    # 1. Fig. 14
-    md += ["## Composition vs the best single chain (paper Fig. 14)", "",
+def fig14_section(args, seeds):
+    """Composition vs the best single chain: (markdown, rows for the plot)."""
+    md = ["## Composition vs the best single chain (paper Fig. 14)", "",
            "Per seed: discovery once (%s), then the beam search over the whole library, and over each chain's own "
            "segments alone. *best chain* is the cheapest valid single-chain part, else the chain part closest to valid." %
            ("6 chains x 400" if args.quick else "10 chains x 1000"), "",
@@ -69,7 +55,7 @@ def main():
            "| --- | --- | --- | --- | --- |"]
     fig14 = []
     for scene in args.fig14_scenes.split(","):
-        problem = os.path.join(ROOT, "sample_scenes", scene, "problem.json")
+        problem = paths.scene_problem(scene)
         cmd = [os.path.join(args.build, "bench", "composition_ablation_bench"), problem, "--seeds", args.seeds]
         if args.quick:
             cmd += ["--chains", "6", "--iterations", "400"]
@@ -91,7 +77,12 @@ def main():
             md.append("| %s | %d | %s | %d of %d | %s |" % (scene, seed, cell(comp), len(valid), len(chains), cell(best)))
             fig14.append((scene, seed, comp, best))
     md.append("")
+    return md, fig14
 
+
+def fig9_section(args, seeds, sheetgen):
+    """Self-riveting against the deflection limit: (markdown, rows for the plot)."""
+    md = []
     # 2. Fig. 9: a sweep of the deflection limit. At a loose limit the lightest part needs no
     # gussets; as the limit tightens, a wall-only springboard stops being stiff enough and the
     # question is whether gussets keep it (self-riveting) or the part must reach the floor.
@@ -104,13 +95,10 @@ def main():
            "[ablation_self_rivet.md](ablation_self_rivet.md) (bench/ablation_self_rivet.py).", "",
            "| limit (mm) | seed | with self-riveting | without | area saved |", "| --- | --- | --- | --- | --- |"]
     sr_rows = []
-    scene_dir = os.path.join(ROOT, "sample_scenes", "wall_standoff")
+    scene_dir = os.path.join(paths.SAMPLE_SCENES, "wall_standoff")
     for limit in limits:
-        doc = json.load(open(os.path.join(scene_dir, "problem.json")))
+        doc = with_absolute_files(json.load(open(os.path.join(scene_dir, "problem.json"))), scene_dir)
         doc["requirements"]["max_deflection"] = limit * 1e-3
-        for m in doc["environment"]["meshes"]:
-            if "file" in m:
-                m["file"] = os.path.join(scene_dir, m["file"])
         problem = os.path.join(tempfile.mkdtemp(prefix="sheetgen_fig9_"), "problem.json")
         json.dump(doc, open(problem, "w"), indent=1)
         for seed in seeds:
@@ -123,15 +111,18 @@ def main():
                 "yes" if b["ok"] else "no", b["area"] * 1e4, b["wall"],
                 "%.1f %%" % saved if saved == saved else ("only with self-riveting" if a["ok"] and not b["ok"] else "n/a")))
     md.append("")
+    return md, sr_rows
 
-    # 3. free vs right angles
-    md += ["## Free angles vs right angles", "",
+
+def angles_section(args, seeds, sheetgen):
+    """Free angles against --right-angles: (markdown, rows for the plot)."""
+    md = ["## Free angles vs right angles", "",
            "`--right-angles`: every bend 90° ± 0.5°, no skew — the practice the paper attributes to experts "
            "(it reports 13.5 % less material than an expert on its avionics bay).", "",
            "| scene | seed | free: valid, area cm² | right angles: valid, area cm² | material saved |", "| --- | --- | --- | --- | --- |"]
     angle_rows = []
     for scene in args.angle_scenes.split(","):
-        problem = os.path.join(ROOT, "sample_scenes", scene, "problem.json")
+        problem = paths.scene_problem(scene)
         for seed in seeds[:1] if not args.quick else seeds[:1]:
             a = solve(sheetgen, problem, seed, [], args.quick)
             b = solve(sheetgen, problem, seed, ["--right-angles"], args.quick)
@@ -141,8 +132,11 @@ def main():
                                                                  "yes" if b["ok"] else "no", b["area"] * 1e4,
                                                                  "%.1f %%" % saved if saved == saved else "n/a (a run has no valid part)"))
     md.append("")
+    return md, angle_rows
 
-    # Plot: area per variant.
+
+def plot(fig14, sr_rows, angle_rows, path):
+    """The area of every variant, one panel per ablation."""
     fig, axes = plt.subplots(1, 3, figsize=(13, 3.8))
     ax = axes[0]
     labels = ["%s s%d" % (s, seed) for s, seed, _, _ in fig14]
@@ -166,11 +160,35 @@ def main():
     ax.set_xticks(range(len(angle_rows))); ax.set_xticklabels([s for s, _, _, _ in angle_rows])
     ax.set_title("free vs right angles"); ax.legend(fontsize=7)
     fig.tight_layout()
-    fig.savefig(os.path.join(ROOT, "docs", "ablation_composition.png"), dpi=110)
+    fig.savefig(path, dpi=110)
+
+
+def main():
+    ap = argparse.ArgumentParser()
+    ap.add_argument("--build", default=os.path.join(ROOT, "build"))
+    ap.add_argument("--seeds", default="1,2,3")
+    ap.add_argument("--quick", action="store_true")
+    ap.add_argument("--fig14-scenes", default="corner,corner_obstacle")
+    ap.add_argument("--angle-scenes", default="corner,corner_obstacle,slanted")
+    ap.add_argument("--fig9-limits", default="1.0,0.5,0.45,0.4", help="deflection limits (mm) for the self-riveting sweep")
+    args = ap.parse_args()
+    seeds = [int(s) for s in args.seeds.split(",")]
+    sheetgen = paths.sheetgen_in(args.build)
+    md = ["# Composition ablations (issue 6)", "",
+          "Made by `bench/ablation_composition.py%s` on %s (2 cores). One run at a time." %
+          (" --quick" if args.quick else "", time.strftime("%Y-%m-%d")), ""]
+    md_14, fig14 = fig14_section(args, seeds)
+    md_9, sr_rows = fig9_section(args, seeds, sheetgen)
+    md_angles, angle_rows = angles_section(args, seeds, sheetgen)
+    md += md_14 + md_9 + md_angles
+    plot(fig14, sr_rows, angle_rows, os.path.join(ROOT, "docs", "ablation_composition.png"))
     md += ["![ablations](ablation_composition.png)", ""]
     open(os.path.join(ROOT, "docs", "ablation_composition.md"), "w").write("\n".join(md) + "\n")
     print("\n".join(md))
 
 
 if __name__ == "__main__":
-    main()
+    try:
+        main()
+    except runner.SolveError as e:
+        raise SystemExit(f"ablation_composition: {e}")

@@ -11,50 +11,39 @@ the box made light (masses swept, default 0.5, 0.4, 0.35 and 0.3 kg at 9 g),
 and the deflection limit swept. Per mass, limit and seed the problem is solved
 with and without self-riveting
 (`--no-self-rivet`); with --verify every self-riveted part is checked by
-tests/python/verify_result.py (brute-force clearance, rivet flanges, CalculiX,
-DXF).
+sheetgen_tools.verify (brute-force clearance, rivet flanges, CalculiX, DXF).
 
-Usage: bench/ablation_self_rivet.py [--build build] [--seeds 1,2,3] [--limits 4,3,2,1]
-       [--strip 0.50,0.60] [--masses 0.5,0.4,0.35,0.3] [--quick] [--verify]
+Usage: PYTHONPATH=tools /usr/bin/python3 bench/ablation_self_rivet.py [--build build] [--seeds 1,2,3]
+       [--limits 4,3,2,1] [--strip 0.50,0.60] [--masses 0.5,0.4,0.35,0.3] [--quick] [--verify]
 One solve at a time (the machine has 2 cores); --quick uses 6 chains x 400 iterations,
 the default is the paper's 10 x 1000.
 """
 import argparse
 import json
 import os
-import subprocess
 import sys
 import tempfile
 import time
 
 import matplotlib
 matplotlib.use("Agg")
-import matplotlib.pyplot as plt
+import matplotlib.pyplot as plt  # noqa: E402
 
-from ablation_composition import solve
+from ablation_composition import solve  # noqa: E402  (bench/, this script's own folder)
+from sheetgen_tools import paths, runner  # noqa: E402
+from sheetgen_tools.pictures import box_faces  # noqa: E402
+from sheetgen_tools.problem import problem_of_result, read_obj, with_absolute_files  # noqa: E402
+from sheetgen_tools.scenes import G  # noqa: E402  (m/s^2, as the sample scenes' forces)
+from sheetgen_tools.verify import VerifyOptions, verify_output  # noqa: E402
 
-ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
-G = 9.81  # m/s^2, as the sample scenes' forces (docs/scenes.md)
-
-
-def read_obj(path):
-    vertices, faces = [], []
-    for line in open(path):
-        s = line.split()
-        if s and s[0] == "v":
-            vertices.append([float(x) for x in s[1:4]])
-        elif s and s[0] == "f":
-            faces.append([int(x.split("/")[0]) - 1 for x in s[1:]])
-    return vertices, faces
+ROOT = paths.ROOT
 
 
 def strip_problem(scene_dir, z_lo, z_hi, mass, limit, out_dir):
     """wall_standoff with its wall rivet area cut to the faces within z_lo..z_hi (m),
     a box of `mass` kg at 9 g and the deflection limit `limit` (m)."""
-    doc = json.load(open(os.path.join(scene_dir, "problem.json")))
+    doc = with_absolute_files(json.load(open(os.path.join(scene_dir, "problem.json"))), scene_dir)
     meshes = {m["name"]: m for m in doc["environment"]["meshes"]}
-    for m in meshes.values():
-        m["file"] = os.path.join(scene_dir, m["file"])
     wall = next(ra for ra in doc["rivet_areas"] if ra["name"] == "wall_rivets")
     V, F = read_obj(meshes[wall["mesh"]]["file"])
     wall["faces"] = [f for f in wall["faces"] if all(z_lo - 1e-9 <= V[i][2] <= z_hi + 1e-9 for i in F[f])]
@@ -71,22 +60,20 @@ def strip_problem(scene_dir, z_lo, z_hi, mass, limit, out_dir):
 
 
 def verify(build, out):
-    r = subprocess.run([sys.executable, os.path.join(ROOT, "tests", "python", "verify_result.py"), out,
-                        "--sheetgen", os.path.join(build, "native", "cli", "sheetgen")], capture_output=True, text=True)
-    lines = r.stdout.splitlines()
+    """sheetgen_tools.verify on one output: (passed, its compliance line, its FAIL lines)."""
+    report = verify_output(out, VerifyOptions(sheetgen=paths.sheetgen_in(build)))
+    lines = report.text().splitlines()
     comp = next((l.split(": ", 1)[1] for l in lines if "compliance ours" in l), "")
-    return r.returncode == 0, comp, [l for l in lines if l.startswith("FAIL")]
+    return report.ok, comp, [l for l in lines if l.startswith("FAIL")]
 
 
 def parts_picture(row, path):
     from mpl_toolkits.mplot3d.art3d import Poly3DCollection
-    sys.path.insert(0, os.path.join(ROOT, "scripts"))
-    from make_report import box_faces
     mass, limit, seed, a, b, _ = row
     fig = plt.figure(figsize=(11, 5))
     for k, (label, run) in enumerate([("with self-riveting", a), ("without", b)]):
         result = json.load(open(os.path.join(run["out"], "result.json")))
-        prob = json.load(open(os.path.join(run["out"], result["problem"]) if not os.path.isabs(result["problem"]) else result["problem"]))
+        prob = json.load(open(problem_of_result(run["out"], result)))
         (part,) = result["parts"]
         ax = fig.add_subplot(1, 2, k + 1, projection="3d")
         ax.computed_zorder = False
@@ -124,26 +111,11 @@ def parts_picture(row, path):
     plt.close(fig)
 
 
-def main():
-    ap = argparse.ArgumentParser()
-    ap.add_argument("--build", default=os.path.join(ROOT, "build"))
-    ap.add_argument("--seeds", default="1,2,3")
-    ap.add_argument("--limits", default="4,3,2,1", help="deflection limits, mm")
-    ap.add_argument("--strip", default="0.50,0.60", help="z range of the wall rivet area kept, m")
-    ap.add_argument("--masses", default="0.5,0.4,0.35,0.3", help="box masses, kg (at 9 g)")
-    ap.add_argument("--quick", action="store_true")
-    ap.add_argument("--verify", action="store_true", help="check every self-riveted part with verify_result.py")
-    args = ap.parse_args()
-    seeds = [int(s) for s in args.seeds.split(",")]
-    limits = [float(x) for x in args.limits.split(",")]
-    masses = [float(x) for x in args.masses.split(",")]
-    z_lo, z_hi = (float(x) for x in args.strip.split(","))
-    sheetgen = os.path.join(args.build, "native", "cli", "sheetgen")
-    scene_dir = os.path.join(ROOT, "sample_scenes", "wall_standoff")
+def sweep(args, sheetgen, scene_dir, seeds, limits, masses, z_lo, z_hi):
+    """Every mass, limit and seed with and without self-riveting: (rows
+    (mass, limit, seed, with, without, check or None), wall faces kept)."""
     work = tempfile.mkdtemp(prefix="sheetgen_fig9_")
-
-    rows = []
-    faces = 0
+    rows, faces = [], 0
     for mass in masses:
         for limit in limits:
             d = os.path.join(work, "mass_%g_limit_%g" % (mass, limit))
@@ -155,7 +127,11 @@ def main():
                 check = verify(args.build, a["out"]) if args.verify and a["ok"] and a["self_rivets"] else None
                 rows.append((mass, limit, seed, a, b, check))
                 print(mass, limit, seed, a["ok"], a["area"] * 1e4, a["self_rivets"], b["ok"], b["area"] * 1e4, check, flush=True)
+    return rows, faces
 
+
+def table(args, rows, faces, limits, masses, z_lo, z_hi):
+    """The markdown of the sweep: one row per run, then how often self-riveting is lighter."""
     settings = "6 chains x 400 iterations" if args.quick else "10 chains x 1000 iterations (the paper's)"
     md = ["# Self-riveting ablation (paper Fig. 9, issue 6)", "",
           "Made by `bench/ablation_self_rivet.py%s%s` on %s (2 cores, %s). One run at a time." %
@@ -185,6 +161,11 @@ def main():
             md.append("* %g kg, %g mm: self-riveting lighter in %d of %d seeds." % (mass, limit, len(lighter), len(sub)))
     md.append("")
 
+    return md
+
+
+def plot(rows, limits, masses, path):
+    """Flat area against the deflection limit, one panel per mass."""
     fig, axes = plt.subplots(1, len(masses), figsize=(3.2 * len(masses) + 0.5, 3.6), sharey=True, squeeze=False)
     for ax, mass in zip(axes[0], masses):
         for k, (label, key, marker) in enumerate([("with self-riveting", 3, "o"), ("without", 4, "s")]):
@@ -202,7 +183,28 @@ def main():
     axes[0][0].legend(fontsize=8)
     fig.suptitle("Fig. 9: a light box near a wall strip, far from the floor", fontsize=10)
     fig.tight_layout()
-    fig.savefig(os.path.join(ROOT, "docs", "ablation_self_rivet.png"), dpi=110)
+    fig.savefig(path, dpi=110)
+
+
+def main():
+    ap = argparse.ArgumentParser()
+    ap.add_argument("--build", default=os.path.join(ROOT, "build"))
+    ap.add_argument("--seeds", default="1,2,3")
+    ap.add_argument("--limits", default="4,3,2,1", help="deflection limits, mm")
+    ap.add_argument("--strip", default="0.50,0.60", help="z range of the wall rivet area kept, m")
+    ap.add_argument("--masses", default="0.5,0.4,0.35,0.3", help="box masses, kg (at 9 g)")
+    ap.add_argument("--quick", action="store_true")
+    ap.add_argument("--verify", action="store_true", help="check every self-riveted part with sheetgen_tools.verify")
+    args = ap.parse_args()
+    seeds = [int(s) for s in args.seeds.split(",")]
+    limits = [float(x) for x in args.limits.split(",")]
+    masses = [float(x) for x in args.masses.split(",")]
+    z_lo, z_hi = (float(x) for x in args.strip.split(","))
+    sheetgen = paths.sheetgen_in(args.build)
+    scene_dir = os.path.join(paths.SAMPLE_SCENES, "wall_standoff")
+    rows, faces = sweep(args, sheetgen, scene_dir, seeds, limits, masses, z_lo, z_hi)
+    md = table(args, rows, faces, limits, masses, z_lo, z_hi)
+    plot(rows, limits, masses, os.path.join(ROOT, "docs", "ablation_self_rivet.png"))
     md += ["![self-riveting ablation](ablation_self_rivet.png)", ""]
     # A row where self-riveting is lighter (else the first), with and without, side by side.
     shown = next((r for r in rows if r[3]["ok"] and r[4]["ok"] and r[3]["area"] < r[4]["area"] - 1e-9), rows[0])
@@ -223,4 +225,7 @@ def main():
 
 
 if __name__ == "__main__":
-    main()
+    try:
+        main()
+    except runner.SolveError as e:
+        sys.exit(f"ablation_self_rivet: {e}")

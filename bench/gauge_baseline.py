@@ -18,39 +18,35 @@ against the free-angle run:
    thickness) as an obstacle, as sheetgen makes earlier parts obstacles;
 3. material is compared by area and by mass (the gauges differ).
 
-With --verify each part at a thicker gauge is checked by
-tests/python/verify_result.py (brute-force clearance, rivet flanges, CalculiX,
-DXF) on its one-load run, whose environment holds the parts before it. One
-solve at a time.
+With --verify each part at a thicker gauge is checked by sheetgen_tools.verify
+(brute-force clearance, rivet flanges, CalculiX, DXF) on its one-load run,
+whose environment holds the parts before it. One solve at a time.
 
-    /usr/bin/python3 bench/gauge_baseline.py [--problem P] [--out DIR] [--free DIR] [--reuse]
-                                              [--verify] [--doc docs/gauge_baseline.md]
+    PYTHONPATH=tools /usr/bin/python3 bench/gauge_baseline.py [--problem P] [--out DIR] [--free DIR] [--reuse]
+                                                               [--verify] [--doc docs/gauge_baseline.md]
 
 The doc's "## Reading" section, written by hand, is kept when the table is remade.
 """
 import argparse
-import copy
 import json
 import os
-import subprocess
 import sys
 import time
 
-import numpy as np
+from sheetgen_tools import paths, runner
+from sheetgen_tools.geometry import part_faces
+from sheetgen_tools.pictures import scene_picture
+from sheetgen_tools.problem import load_problem, one_load_problem
+from sheetgen_tools.verify import VerifyOptions, verify_output
 
-ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
-sys.path.insert(0, os.path.join(ROOT, "tests", "python"))
-from verify_result import load_rotation  # noqa: E402
-sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from right_angle_baseline import run  # noqa: E402
 INCH = 0.0254
 # Standard 2024-T3 sheet thicknesses above 0.063 in (AMS-QQ-A-250/4 sizes), in.
 GAUGES_IN = [0.071, 0.080, 0.090, 0.100, 0.125, 0.160]
 
 
-def solve(sheetgen, problem, out, extra):
-    """Solves; returns the wall time, s."""
-    return run(sheetgen, problem, out, extra, who="gauge_baseline")[1]
+def solve(sheetgen, problem, out, flags):
+    """Solves at the problem's own settings, 2 threads; returns the wall time, s."""
+    return runner.solve(problem, out, runner.SolveOptions(flags=tuple(flags), sheetgen=sheetgen)).check().wall_s
 
 
 def read_result(out):
@@ -59,91 +55,39 @@ def read_result(out):
 
 
 def sheet_faces(part, thickness):
-    """Both faces (mid-surface +- t/2) of a result.json part as one inline mesh:
-    vertices #V by 3 (m), triangles fanned from each tab's first corner."""
-    vertices, triangles = [], []
-    for tab in part["tabs"]:
-        n = tab["normal"]
-        for side in (-0.5, 0.5):
-            base = len(vertices)
-            for c in tab["corners"]:
-                vertices.append([c[k] + side * thickness * n[k] for k in range(3)])
-            for k in range(1, len(tab["corners"]) - 1):
-                triangles.append([base, base + k, base + k + 1])
-    return {"name": "part:" + part["load"], "vertices": vertices, "triangles": triangles}
+    """Both faces of a part's sheet (thickness m) as one inline problem mesh "part:<load>"."""
+    V, F = part_faces(part, thickness)
+    return {"name": "part:" + part["load"], "vertices": V.tolist(), "triangles": F.tolist()}
 
 
-def box_mesh(load, below=0.0):
-    """A load's box (centre, size in m, rotation) as an inline mesh of 12
-    triangles, its bottom face lowered by `below` (m, along the box's -z)."""
-    R = load_rotation(load)
-    h = 0.5 * (np.array(load["size"]) + np.array([0.0, 0.0, below]))
-    c = np.array(load["center"]) - R @ np.array([0.0, 0.0, 0.5 * below])
-    vertices = [(c + R @ (h * np.array([sx, sy, sz]))).tolist() for sz in (-1, 1) for sy in (-1, 1) for sx in (-1, 1)]
-    quads = [(0, 2, 3, 1), (4, 5, 7, 6), (0, 1, 5, 4), (2, 6, 7, 3), (0, 4, 6, 2), (1, 3, 7, 5)]
-    triangles = [t for a, b, c, d in quads for t in ([a, b, c], [a, c, d])]
-    return {"name": "box:" + load["name"], "vertices": vertices, "triangles": triangles}
+def verify(sheetgen, out):
+    """sheetgen_tools.verify on one output folder: (passed, its summary line, its FAIL lines)."""
+    report = verify_output(out, VerifyOptions(sheetgen=sheetgen))
+    lines = report.text().splitlines()
+    return report.ok, lines[-1], [l for l in lines if l.startswith("FAIL")]
 
 
-def one_load_problem(doc, problem_dir, load, thickness, obstacles, path, base_room=0.0):
-    """`doc` with only `load`, the sheet `thickness` (m), the other loads' boxes
-    and `obstacles` (inline meshes) added: what sheetgen's own run of the load
-    would avoid (every load box and the parts before it). Each other box is
-    lowered by `base_room` (m): the room its own base tab needs under it
-    (docs/gauge_baseline.md "Reading")."""
-    q = copy.deepcopy(doc)
-    for m in q["environment"]["meshes"]:
-        if "file" in m:
-            m["file"] = os.path.join(problem_dir, m["file"])
-    q["environment"]["meshes"] += [box_mesh(other, base_room) for other in doc["loads"] if other["name"] != load["name"]]
-    q["environment"]["meshes"] += obstacles
-    q["loads"] = [load]
-    q.setdefault("material", {})["thickness"] = thickness
-    q["description"] = (f"{doc.get('name', '')}: load {load['name']} alone at {thickness * 1e3:.3f} mm sheet, "
-                        f"right angles, the other parts as obstacles (bench/gauge_baseline.py)")
-    with open(path, "w") as f:
-        json.dump(q, f)
-
-
-def verify(build_sheetgen, out):
-    """verify_result.py on one output folder: (passed, its last line, its FAIL lines)."""
-    args = [sys.executable, os.path.join(ROOT, "tests", "python", "verify_result.py"), out, "--sheetgen", build_sheetgen]
-    r = subprocess.run(args, capture_output=True, text=True)
-    last = (r.stdout.strip().splitlines() or [""])[-1]
-    return r.returncode == 0, last, [l for l in r.stdout.splitlines() if l.startswith("FAIL")]
-
-
-def main():
+def parse_args():
     ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
-    ap.add_argument("--problem", default=os.path.join(ROOT, "sample_scenes", "avionics_bay", "problem.json"))
-    ap.add_argument("--out", default=os.path.join(ROOT, "build", "gauge_baseline"))
+    ap.add_argument("--problem", default=paths.scene_problem("avionics_bay"))
+    ap.add_argument("--out", default=os.path.join(paths.DEFAULT_BUILD, "gauge_baseline"))
     ap.add_argument("--free", help="reuse this free-angle output folder of the same problem")
-    ap.add_argument("--sheetgen", default=os.path.join(ROOT, "build", "native", "cli", "sheetgen"))
+    ap.add_argument("--sheetgen", default=paths.DEFAULT_SHEETGEN)
     ap.add_argument("--verify", action="store_true",
-                    help="check the stand-in's parts at a thicker gauge with verify_result.py (CalculiX)")
-    ap.add_argument("--doc", default=os.path.join(ROOT, "docs", "gauge_baseline.md"))
+                    help="check the stand-in's parts at a thicker gauge with sheetgen_tools.verify (CalculiX)")
+    ap.add_argument("--doc", default=os.path.join(paths.ROOT, "docs", "gauge_baseline.md"))
     ap.add_argument("--reuse", action="store_true",
                     help="read a run's result.json from --out where it exists instead of solving again (its wall "
                          "time is the solver's own total_s)")
-    args = ap.parse_args()
-    os.makedirs(args.out, exist_ok=True)
-    with open(args.problem) as f:
-        doc = json.load(f)
-    problem_dir = os.path.dirname(os.path.abspath(args.problem))
-    base_t = doc.get("material", {}).get("thickness", 1.6e-3)
+    return ap.parse_args()
 
-    walls = {}
-    free_dir = args.free or os.path.join(args.out, "free")
-    if not args.free:
-        walls["free"] = solve(args.sheetgen, args.problem, free_dir, [])
-    free = {p["load"]: p for p in read_result(free_dir)["parts"]}
 
-    # The expert stand-in, load by load in the problem's order (as sheetgen
-    # solves them): right angles at the problem's sheet, else the first gauge
-    # up that has a part; the parts before it are its obstacles.
-    expert = {}
-    obstacles = []
-    tries = []
+def expert_stand_in(doc, problem_dir, base_t, args):
+    """The expert stand-in, load by load in the problem's order (as sheetgen
+    solves them): right angles at the problem's sheet, else the first gauge up
+    that has a part; the parts before it are its obstacles. Returns
+    ({load: {"part", "thickness" m, "dir"}}, every try as (load, thickness m, part, wall s))."""
+    expert, obstacles, tries = {}, [], []
     for li, load in enumerate(doc["loads"]):
         name = load["name"]
         for t in [base_t] + [g * INCH for g in GAUGES_IN if g * INCH > base_t + 1e-9]:
@@ -163,21 +107,12 @@ def main():
                 expert[name] = {"part": part, "thickness": t, "dir": os.path.join(run_dir, "out")}
                 obstacles.append(sheet_faces(part, t))
                 break
-    walls["expert stand-in (its one-load runs)"] = sum(w for _, _, _, w in tries)
+    return expert, tries
 
-    checks = {}
-    if args.verify:
-        for name, e in expert.items():
-            if e["thickness"] > base_t + 1e-9:  # the parts only this script makes
-                checks[name] = verify(args.sheetgen, e["dir"])
-                print(f"verify {name}: {checks[name][1]}", flush=True)
 
-    # The table.
-    md = ["# The expert stand-in with the next gauge up (avionics bay)", "",
-          f"Made by `bench/gauge_baseline.py` on {time.strftime('%Y-%m-%d')} (2 cores, one solve at a time), "
-          f"problem `{os.path.relpath(args.problem, ROOT)}` at its own settings "
-          f"({doc.get('search', {}).get('chains', 10)} chains x {doc.get('search', {}).get('iterations', 1000)} iterations).", "",
-          "| load | free angles, %.3f in | expert stand-in: right angles | gauge (in) | free vs stand-in, mass |" % (base_t / INCH),
+def comparison_table(doc, base_t, free, expert):
+    """Per load and in total: free angles against the stand-in, by area and by mass."""
+    md = ["| load | free angles, %.3f in | expert stand-in: right angles | gauge (in) | free vs stand-in, mass |" % (base_t / INCH),
           "| --- | --- | --- | --- | --- |"]
     tot = {"free_a": 0.0, "free_m": 0.0, "ex_a": 0.0, "ex_m": 0.0}
     complete = True
@@ -207,27 +142,65 @@ def main():
            "| mass (kg) | %.3f | %.3f | %+.1f %% |" % (tot["free_m"], tot["ex_m"], 100.0 * (tot["free_m"] / tot["ex_m"] - 1.0))]
     if not complete:
         md += ["", "**Incomplete:** some load has no stand-in part at any gauge tried; the totals leave it out."]
-    md += ["", "Every run of the stand-in (each load alone, the parts before it as obstacles):", ""]
+    return md
+
+
+def runs_and_checks(tries, checks, walls):
+    """Every run of the stand-in, the independent checks, the wall times."""
+    md = ["", "Every run of the stand-in (each load alone, the parts before it as obstacles):", ""]
     for name, t, part, wall in tries:
         what = ("ok, %.0f cm², C %.4g of %.4g J, MS %.2f" % (part["area_m2"] * 1e4, part["compliance"], part["compliance_limit"],
                                                             part["margin_of_safety"])
                 if part["status"] == "ok" else part.get("reason", ""))
         md.append(f"* {name}, {t / INCH:.3f} in ({wall:.0f} s): {what}")
     if checks:
-        md += ["", "Independent checks of the stand-in's thicker parts (`tests/python/verify_result.py`, "
+        md += ["", "Independent checks of the stand-in's thicker parts (`sheetgen_tools.verify`, "
                "the one-load problem with the other parts as obstacles):", ""]
         for name, (ok, last, fails) in checks.items():
             md.append(f"* {name}: {'passed' if ok else 'FAILED'}: `{last}`" + ("".join(f"; `{x}`" for x in fails[:3])))
     md += ["", "Wall time: " + ", ".join(f"{k} {v:.0f} s" for k, v in walls.items()) + "."]
-    # The stand-in's parts in the environment, drawn as docs/results.md draws a run.
-    sys.path.insert(0, os.path.join(ROOT, "scripts"))
-    import make_report
-    prob, meshes = make_report.load_problem(args.problem)
-    picture = os.path.join(os.path.dirname(os.path.abspath(args.doc)), "images", "gauge_baseline_scene.png")
-    os.makedirs(os.path.dirname(picture), exist_ok=True)
+    return md
+
+
+def picture(args, doc, expert):
+    """The stand-in's parts in the environment, drawn as docs/results.md draws a run; its markdown line."""
+    prob, meshes = load_problem(args.problem)
+    doc_dir = os.path.dirname(os.path.abspath(args.doc))
+    path = os.path.join(doc_dir, "images", "gauge_baseline_scene.png")
+    os.makedirs(os.path.dirname(path), exist_ok=True)
     parts = [expert[l["name"]]["part"] for l in doc["loads"] if l["name"] in expert]
-    make_report.scene_picture("expert stand-in (right angles, next gauge up)", prob, meshes, {"parts": parts}, picture)
-    md += ["", "![the expert stand-in's parts](%s)" % os.path.relpath(picture, os.path.dirname(os.path.abspath(args.doc)))]
+    scene_picture("expert stand-in (right angles, next gauge up)", prob, meshes, {"parts": parts}, path)
+    return ["", "![the expert stand-in's parts](%s)" % os.path.relpath(path, doc_dir)]
+
+
+def main():
+    args = parse_args()
+    os.makedirs(args.out, exist_ok=True)
+    with open(args.problem) as f:
+        doc = json.load(f)
+    problem_dir = os.path.dirname(os.path.abspath(args.problem))
+    base_t = doc.get("material", {}).get("thickness", 1.6e-3)
+
+    walls = {}
+    free_dir = args.free or os.path.join(args.out, "free")
+    if not args.free:
+        walls["free"] = solve(args.sheetgen, args.problem, free_dir, [])
+    free = {p["load"]: p for p in read_result(free_dir)["parts"]}
+    expert, tries = expert_stand_in(doc, problem_dir, base_t, args)
+    walls["expert stand-in (its one-load runs)"] = sum(w for _, _, _, w in tries)
+
+    checks = {}
+    if args.verify:
+        for name, e in expert.items():
+            if e["thickness"] > base_t + 1e-9:  # the parts only this script makes
+                checks[name] = verify(args.sheetgen, e["dir"])
+                print(f"verify {name}: {checks[name][1]}", flush=True)
+
+    md = ["# The expert stand-in with the next gauge up (avionics bay)", "",
+          f"Made by `bench/gauge_baseline.py` on {time.strftime('%Y-%m-%d')} (2 cores, one solve at a time), "
+          f"problem `{os.path.relpath(args.problem, paths.ROOT)}` at its own settings "
+          f"({doc.get('search', {}).get('chains', 10)} chains x {doc.get('search', {}).get('iterations', 1000)} iterations).", ""]
+    md += comparison_table(doc, base_t, free, expert) + runs_and_checks(tries, checks, walls) + picture(args, doc, expert)
     # A "## Reading" section written by hand below the generated part is kept.
     reading = ""
     if os.path.exists(args.doc):
@@ -240,4 +213,7 @@ def main():
 
 
 if __name__ == "__main__":
-    main()
+    try:
+        main()
+    except runner.SolveError as e:
+        sys.exit(f"gauge_baseline: {e}")

@@ -8,40 +8,30 @@ compares against (every bend 90 deg +- 0.5 deg, no skew). Material saved is
 reported only where both runs have a valid part; the other rows say why the
 run that failed failed (the reason line of `sheetgen solve`).
 
-    /usr/bin/python3 bench/right_angle_baseline.py [--scenes a,b] [--out DIR]
+    PYTHONPATH=tools /usr/bin/python3 bench/right_angle_baseline.py [--scenes a,b] [--out DIR]
 
 Writes DIR/right_angle_baseline.md (default build/right_angle_baseline/) and
-keeps each run's output folder next to it, so `tests/python/verify_result.py`
+keeps each run's output folder next to it, so `python3 -m sheetgen_tools.verify`
 can check the parts. One solve at a time; about 10 minutes on 2 cores.
 """
 import argparse
-import json
 import os
-import subprocess
+import sys
 import time
 
-ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
-SCENES = "shelf,corner,wall_standoff,corner_obstacle,slanted,sharp_angles,boxed_in,bulkhead_hole,maze"
+from sheetgen_tools import paths, runner
+from sheetgen_tools.scenes import LIBRARY
+
+# Every single-load scene of the library (the bay has its own baseline, bench/gauge_baseline.py).
+SCENES = ",".join(s for s in LIBRARY if s != "avionics_bay")
 
 
-def run(sheetgen, problem, out, extra, who="right_angle_baseline"):
-    """`sheetgen solve PROBLEM --out OUT --threads 2 EXTRA`: (result.json, wall time s).
-    Exits with the solver's output unless it exited 0 or 2 (a load without a part)."""
-    start = time.monotonic()
-    p = subprocess.run([sheetgen, "solve", problem, "--out", out, "--threads", "2"] + extra,
-                       stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True, stdin=subprocess.DEVNULL)
-    wall = time.monotonic() - start
-    if p.returncode not in (0, 2):
-        raise SystemExit(f"{who}: {problem}: sheetgen exited {p.returncode}:\n{p.stdout[-2000:]}")
-    with open(os.path.join(out, "result.json")) as f:
-        return json.load(f), wall
-
-
-def solve(sheetgen, problem, out, extra):
-    result, wall = run(sheetgen, problem, out, extra)
-    part = result["parts"][0]
+def solve(sheetgen, problem, out, flags):
+    """One run at the problem's own settings, 2 threads; SolveError unless sheetgen finished."""
+    solved = runner.solve(problem, out, runner.SolveOptions(flags=tuple(flags), sheetgen=sheetgen)).check()
+    part = solved.parts[0]
     return {"ok": part.get("status") == "ok", "area_cm2": part.get("area_m2", 0.0) * 1e4,
-            "bends": part.get("bends", 0), "reason": part.get("reason", ""), "wall_s": wall}
+            "bends": part.get("bends", 0), "reason": part.get("reason", ""), "wall_s": solved.wall_s}
 
 
 def cell(r):
@@ -53,14 +43,14 @@ def cell(r):
 def main():
     ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     ap.add_argument("--scenes", default=SCENES)
-    ap.add_argument("--out", default=os.path.join(ROOT, "build", "right_angle_baseline"))
-    ap.add_argument("--sheetgen", default=os.path.join(ROOT, "build", "native", "cli", "sheetgen"))
+    ap.add_argument("--out", default=os.path.join(paths.DEFAULT_BUILD, "right_angle_baseline"))
+    ap.add_argument("--sheetgen", default=paths.DEFAULT_SHEETGEN)
     args = ap.parse_args()
     os.makedirs(args.out, exist_ok=True)
     rows, reasons = [], []
     both_free = both_ra = 0.0
     for scene in args.scenes.split(","):
-        problem = os.path.join(ROOT, "sample_scenes", scene, "problem.json")
+        problem = paths.scene_problem(scene)
         free = solve(args.sheetgen, problem, os.path.join(args.out, scene, "free"), [])
         ra = solve(args.sheetgen, problem, os.path.join(args.out, scene, "right_angles"), ["--right-angles"])
         saved = "n/a"
@@ -88,4 +78,7 @@ def main():
 
 
 if __name__ == "__main__":
-    main()
+    try:
+        main()
+    except runner.SolveError as e:
+        sys.exit(f"right_angle_baseline: {e}")

@@ -1,19 +1,19 @@
-"""bench/gauge_baseline.py's obstacles: what the expert stand-in's one-load runs
-must avoid is what sheetgen's own run of the bay avoids (every load box and
-both faces of every earlier part). Closed forms: a box's volume and corner
-distances, the sheet's thickness between its faces."""
+"""The obstacles of bench/gauge_baseline.py (sheetgen_tools.geometry's box_mesh
+and part_faces, sheetgen_tools.problem's one_load_problem): what the expert
+stand-in's one-load runs must avoid is what sheetgen's own run of the bay
+avoids (every load box and both faces of every earlier part). Closed forms: a
+box's volume and corner distances, the sheet's thickness between its faces."""
 import json
 import math
 import os
-import sys
 import tempfile
 import unittest
 
 import numpy as np
 
-ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
-sys.path.insert(0, os.path.join(ROOT, "bench"))
-import gauge_baseline  # noqa: E402
+from sheetgen_tools.geometry import box_mesh, part_faces
+from sheetgen_tools.paths import SAMPLE_SCENES
+from sheetgen_tools.problem import one_load_problem
 
 
 def closed_mesh_volume(mesh):
@@ -27,7 +27,7 @@ class BoxMesh(unittest.TestCase):
         half = math.radians(30) / 2
         load = {"name": "b", "center": [1.0, 2.0, 3.0], "size": [0.3, 0.2, 0.1],
                 "rotation": [math.cos(half), 0.0, 0.0, math.sin(half)]}
-        m = gauge_baseline.box_mesh(load)
+        m = box_mesh(load)
         self.assertEqual(len(m["triangles"]), 12)
         # Divergence theorem: a closed, outward-wound mesh encloses + the box volume.
         self.assertAlmostEqual(closed_mesh_volume(m), 0.3 * 0.2 * 0.1, places=12)
@@ -42,7 +42,7 @@ class BoxMesh(unittest.TestCase):
         # Tilted 90 deg about x: the box's -z (its bottom) points along world +y.
         load = {"name": "b", "center": [0.0, 0.0, 0.0], "size": [0.3, 0.2, 0.1],
                 "rotation": [math.cos(math.pi / 4), math.sin(math.pi / 4), 0.0, 0.0]}
-        m = gauge_baseline.box_mesh(load, below=0.004)
+        m = box_mesh(load, below=0.004)
         self.assertAlmostEqual(closed_mesh_volume(m), 0.3 * 0.2 * 0.104, places=12)
         V = np.array(m["vertices"])
         np.testing.assert_allclose(sorted(set(np.round(V[:, 1], 9))), [-0.05, 0.054], atol=1e-12)
@@ -54,10 +54,9 @@ class SheetFaces(unittest.TestCase):
         part = {"load": "p", "tabs": [
             {"corners": [[0, 0, 0], [0.1, 0, 0], [0.1, 0.05, 0], [0, 0.05, 0]], "normal": [0, 0, 1]},
             {"corners": [[0.1, 0, 0], [0.1, 0.05, 0], [0.1, 0.05, -0.03], [0.1, 0, -0.03]], "normal": [1, 0, 0]}]}
-        m = gauge_baseline.sheet_faces(part, 2.0e-3)
-        V = np.array(m["vertices"])
+        V, F = part_faces(part, 2.0e-3)
         self.assertEqual(len(V), 16)
-        self.assertEqual(len(m["triangles"]), 8)  # two per quad face
+        self.assertEqual(len(F), 8)  # two per quad face
         for k in (0, 8):  # each tab: its 4 corners at -t/2, then at +t/2
             np.testing.assert_allclose(np.linalg.norm(V[k + 4:k + 8] - V[k:k + 4], axis=1), 2.0e-3, rtol=1e-12)
         np.testing.assert_allclose(V[0], [0, 0, -1.0e-3])
@@ -66,12 +65,12 @@ class SheetFaces(unittest.TestCase):
 
 class OneLoadProblem(unittest.TestCase):
     def test_one_load_with_the_other_boxes_and_the_parts_before_it(self):
-        doc = json.load(open(os.path.join(ROOT, "sample_scenes", "avionics_bay", "problem.json")))
+        doc = json.load(open(os.path.join(SAMPLE_SCENES, "avionics_bay", "problem.json")))
         obstacle = {"name": "part:x", "vertices": [[0, 0, 0], [1, 0, 0], [0, 1, 0]], "triangles": [[0, 1, 2]]}
         with tempfile.TemporaryDirectory() as d:
             path = os.path.join(d, "problem.json")
-            gauge_baseline.one_load_problem(doc, os.path.join(ROOT, "sample_scenes", "avionics_bay"), doc["loads"][3],
-                                            2.032e-3, [obstacle], path, base_room=1.6e-3)
+            one_load_problem(doc, os.path.join(SAMPLE_SCENES, "avionics_bay"), doc["loads"][3],
+                             2.032e-3, [obstacle], path, base_room=1.6e-3)
             q = json.load(open(path))
         self.assertEqual([l["name"] for l in q["loads"]], [doc["loads"][3]["name"]])
         self.assertEqual(q["material"]["thickness"], 2.032e-3)
