@@ -5,6 +5,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <limits>
+#include <optional>
 #include <string>
 
 #include "sheetgen/env/environment.hpp"
@@ -137,106 +138,168 @@ ContractResult contract_segment(SegmentWork& work, const Environment& env, const
   return r;
 }
 
-ShortcutResult shortcut_segment(SegmentWork& work, const Environment& env, const SheetSpec& spec,
-                                const ShortcutOptions& o) {
-  ShortcutResult r;
-  r.length_before = r.length_after = work.length();
-  if (!o.enabled || work.flange != work.part.size() - 1 || work.feeler_count() < 1) return r;
-  const Manufacturing& m = spec.manufacturing;
-  // Shortcuts of a raw state that does not unfold need only be valid in 3D (widening may repair the unfold).
-  const bool check_unfold = segment_valid(work, env, spec);
-  auto acceptable = [&](const SegmentWork& w) {
+namespace {
+
+// Whether a shortcut may replace the segment. Shortcuts of a raw state that
+// does not unfold need only be valid in 3D (widening may repair the unfold).
+struct Acceptance {
+  const Environment& env;
+  const SheetSpec& spec;
+  bool check_unfold;
+  bool operator()(const SegmentWork& w) const {
     return check_unfold ? segment_valid(w, env, spec) : check_validity(w.part, realise(w.part), env).valid();
-  };
-  // theta3 samples: both signs on [min, max] bend angle; theta2 samples on [-skew/2, skew/2].
+  }
+};
+
+// theta3 samples: both signs on [min, max] bend angle (and 0 where flat extensions are allowed).
+std::vector<double> bend_samples(const Manufacturing& m, int samples) {
   std::vector<double> bends;
-  const int nb = std::max(2, o.bend_samples);
+  const int nb = std::max(2, samples);
   for (int k = 0; k < nb; ++k) {
     const double a = m.min_bend_angle + (m.max_bend_angle - m.min_bend_angle) * (k + 0.5) / nb;
     bends.push_back(a);
     bends.push_back(-a);
   }
   if (m.flat_extensions) bends.push_back(0.0);
+  return bends;
+}
+
+// theta2 samples on [-skew/2, skew/2].
+std::vector<double> skew_samples(const Manufacturing& m, int samples) {
   std::vector<double> skews;
-  const int ns = std::max(1, o.skew_samples);
+  const int ns = std::max(1, samples);
   for (int k = 0; k < ns; ++k) skews.push_back(ns == 1 ? 0.0 : -0.5 * m.max_skew + m.max_skew * k / (ns - 1));
-  // One re-aim: tab k gets (theta2, theta3) and is aimed at the plane; when pre >= 0 the
-  // tab before it (k's parent) first gets (pre_theta3, pre_l).
-  struct Option {
-    double length;
-    double theta2, theta3, pre_theta3, pre_l;
-    int solution;
-  };
-  const double current = work.length();
-  SegmentWork best;
-  double best_length = o.max_length_ratio * current;
-  bool found = false;
+  return skews;
+}
+
+// One re-aim: tab k gets (theta2, theta3) and is aimed at the plane; when
+// pre_theta3 is a number the tab before it (k's parent) first gets (pre_theta3, pre_l).
+struct ReAim {
+  double length;  // m, of the segment re-aimed this way
+  double theta2, theta3, pre_theta3, pre_l;
+  int solution;   // which of attach_flange's two solutions
+};
+
+bool build_reaim(const SegmentWork& cut, int k, const ReAim& op, const SheetSpec& spec, SegmentWork& out) {
+  out = cut;
+  if (k > cut.first) {
+    TabParameters& q = out.part.tabs[k - 1].params;
+    q.theta3 = op.pre_theta3;
+    q.l = op.pre_l;
+  }
+  TabParameters& p = out.part.tabs[k].params;
+  p.theta2 = op.theta2;
+  p.theta3 = op.theta3;
   const double nan = std::numeric_limits<double>::quiet_NaN();
-  auto build = [&](const SegmentWork& cut, int k, const Option& op, SegmentWork& out) {
-    out = cut;
-    if (k > cut.first) {
-      TabParameters& q = out.part.tabs[k - 1].params;
-      q.theta3 = op.pre_theta3;
-      q.l = op.pre_l;
-    }
-    TabParameters& p = out.part.tabs[k].params;
-    p.theta2 = op.theta2;
-    p.theta3 = op.theta3;
-    return attach_flange(out.part, k, out.plane, spec, out.flange, nan, op.solution == 1) == out.flange;
-  };
+  return attach_flange(out.part, k, out.plane, spec, out.flange, nan, op.solution == 1) == out.flange;
+}
+
+// The segment truncated after tab k, the flange hung on k's far edge.
+SegmentWork truncated_after(const SegmentWork& work, int k) {
+  SegmentWork cut;
+  cut.plane = work.plane;
+  cut.first = work.first;
+  cut.part.load = work.part.load;
+  cut.part.base = work.part.base;
+  cut.part.tabs.assign(work.part.tabs.begin(), work.part.tabs.begin() + k + 1);
+  Tab fl = work.part.tabs[work.flange];
+  fl.parent = k;
+  fl.parent_edge = kFarEdge;
+  cut.part.tabs.push_back(fl);
+  cut.flange = k + 1;
+  return cut;
+}
+
+// The values each re-aim variable of tab k (and of its parent inside the segment) is tried at.
+struct ReAimSamples {
+  std::vector<double> theta2, theta3, pre_theta3, pre_l;
+};
+
+ReAimSamples reaim_samples(const SegmentWork& cut, int k, const std::vector<double>& bends, const std::vector<double>& skews,
+                           const Manufacturing& m) {
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  const TabParameters orig = cut.part.tabs[k].params;
+  ReAimSamples s{{orig.theta2}, bends, {nan}, {nan}};
+  s.theta3.push_back(orig.theta3);
+  if (k == cut.first) {
+    s.theta2.insert(s.theta2.end(), skews.begin(), skews.end());
+  } else {
+    const TabParameters& q = cut.part.tabs[k - 1].params;
+    s.pre_theta3 = bends;
+    s.pre_theta3.push_back(q.theta3);
+    s.pre_l = {q.l};
+    for (double f : {0.25, 0.5, 0.75}) s.pre_l.push_back(std::max(m.min_tab_length, f * q.l));
+    if (q.l < m.max_tab_length) s.pre_l.push_back(std::min(m.max_tab_length, std::max(1.5 * q.l, m.min_tab_length)));
+  }
+  return s;
+}
+
+// Every re-aim that attaches and is shorter than best_length, shortest first
+// (`prefix`: m, the kept tabs before k - 1).
+std::vector<ReAim> candidate_reaims(const SegmentWork& cut, int k, const ReAimSamples& s, double prefix, double best_length,
+                                    const SheetSpec& spec) {
+  std::vector<ReAim> options;
+  SegmentWork trial;
+  for (double a : s.pre_theta3)
+    for (double pl : s.pre_l)
+      for (double t2 : s.theta2)
+        for (double t3 : s.theta3)
+          for (int sol = 0; sol < 2; ++sol) {
+            ReAim op{0, t2, t3, a, pl, sol};
+            if (!build_reaim(cut, k, op, spec, trial)) continue;
+            op.length = prefix + trial.part.tabs[k].params.l + (k > cut.first ? pl : 0.0);
+            if (op.length < best_length) options.push_back(op);
+          }
+  std::stable_sort(options.begin(), options.end(), [](const ReAim& a, const ReAim& b) { return a.length < b.length; });
+  return options;
+}
+
+struct Shortcut {
+  SegmentWork work;
+  double length = 0;  // m
+};
+
+// The first acceptable candidate is the shortest: they come sorted. At most
+// max_checks full validity checks.
+std::optional<Shortcut> first_acceptable(const SegmentWork& cut, int k, const std::vector<ReAim>& options, double best_length,
+                                         const Acceptance& acceptable, const SheetSpec& spec, int max_checks) {
+  int checks = 0;
+  SegmentWork trial;
+  for (const ReAim& op : options) {
+    if (checks >= max_checks || op.length >= best_length) break;
+    build_reaim(cut, k, op, spec, trial);
+    ++checks;
+    if (!acceptable(trial)) continue;
+    return Shortcut{trial, op.length};
+  }
+  return std::nullopt;
+}
+
+}  // namespace
+
+ShortcutResult shortcut_segment(SegmentWork& work, const Environment& env, const SheetSpec& spec,
+                                const ShortcutOptions& o) {
+  ShortcutResult r;
+  r.length_before = r.length_after = work.length();
+  if (!o.enabled || work.flange != work.part.size() - 1 || work.feeler_count() < 1) return r;
+  const Manufacturing& m = spec.manufacturing;
+  const Acceptance acceptable{env, spec, segment_valid(work, env, spec)};
+  const std::vector<double> bends = bend_samples(m, o.bend_samples);
+  const std::vector<double> skews = skew_samples(m, o.skew_samples);
+  SegmentWork best;
+  double best_length = o.max_length_ratio * work.length();
+  bool found = false;
   for (int k = work.first; k < work.flange && k <= work.first + o.max_depth; ++k) {
-    // The segment truncated after k, the flange hung on k's far edge.
-    SegmentWork cut;
-    cut.plane = work.plane;
-    cut.first = work.first;
-    cut.part.load = work.part.load;
-    cut.part.base = work.part.base;
-    cut.part.tabs.assign(work.part.tabs.begin(), work.part.tabs.begin() + k + 1);
-    Tab fl = work.part.tabs[work.flange];
-    fl.parent = k;
-    fl.parent_edge = kFarEdge;
-    cut.part.tabs.push_back(fl);
-    cut.flange = k + 1;
+    const SegmentWork cut = truncated_after(work, k);
     double prefix = 0;  // lengths of the kept tabs before k - 1
     for (int i = work.first; i < k - 1; ++i) prefix += work.part.tabs[i].params.l;
     if (prefix >= best_length) break;
-    const TabParameters orig = cut.part.tabs[k].params;
-    std::vector<double> t2s = {orig.theta2}, t3s = bends, pre_t3 = {nan}, pre_l = {nan};
-    t3s.push_back(orig.theta3);
-    if (k == cut.first) {
-      t2s.insert(t2s.end(), skews.begin(), skews.end());
-    } else {
-      const TabParameters& q = cut.part.tabs[k - 1].params;
-      pre_t3 = bends;
-      pre_t3.push_back(q.theta3);
-      pre_l = {q.l};
-      for (double f : {0.25, 0.5, 0.75}) pre_l.push_back(std::max(m.min_tab_length, f * q.l));
-      if (q.l < m.max_tab_length) pre_l.push_back(std::min(m.max_tab_length, std::max(1.5 * q.l, m.min_tab_length)));
-    }
-    std::vector<Option> options;
-    SegmentWork trial;
-    for (double a : pre_t3)
-      for (double pl : pre_l)
-        for (double t2 : t2s)
-          for (double t3 : t3s)
-            for (int sol = 0; sol < 2; ++sol) {
-              Option op{0, t2, t3, a, pl, sol};
-              if (!build(cut, k, op, trial)) continue;
-              op.length = prefix + trial.part.tabs[k].params.l + (k > cut.first ? pl : 0.0);
-              if (op.length < best_length) options.push_back(op);
-            }
-    std::stable_sort(options.begin(), options.end(), [](const Option& a, const Option& b) { return a.length < b.length; });
-    int checks = 0;
-    for (const Option& op : options) {
-      if (checks >= o.max_checks || op.length >= best_length) break;
-      build(cut, k, op, trial);
-      ++checks;
-      if (!acceptable(trial)) continue;
-      best = trial;
-      best_length = op.length;
-      found = true;
-      break;  // options are sorted: the first valid one is this k's shortest
-    }
+    const std::vector<ReAim> options = candidate_reaims(cut, k, reaim_samples(cut, k, bends, skews, m), prefix, best_length, spec);
+    std::optional<Shortcut> s = first_acceptable(cut, k, options, best_length, acceptable, spec, o.max_checks);
+    if (!s) continue;
+    best = std::move(s->work);
+    best_length = s->length;
+    found = true;
   }
   if (found) {
     r.removed_tabs = work.feeler_count() - best.feeler_count();
