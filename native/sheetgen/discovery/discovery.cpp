@@ -350,94 +350,142 @@ std::vector<double> current_popularity(const Context& cx, const std::vector<int>
   return popularity_factors(counts, cx.o.target.beta);
 }
 
+// A proposed next state of a chain, its proposal probabilities and the
+// connections found while building it.
+struct Proposal {
+  Part next;
+  double q_fwd = 1, q_rev = 1;
+  std::vector<Candidate> found;
+};
+
+// Index of the pick-th feeler tab (from 0).
+int nth_feeler(const Part& part, int pick) {
+  for (int i = 1; i < part.size(); ++i)
+    if (is_feeler(part, i) && pick-- == 0) return i;
+  return -1;
+}
+
+// Tab t and its descendants, in index order (parents come first).
+std::vector<int> subtree(const Part& part, int t) {
+  std::vector<int> sub;
+  std::vector<char> in(part.size(), 0);
+  for (int i = t; i < part.size(); ++i)
+    if (i == t || (i > 0 && in[part.tabs[i].parent])) { in[i] = 1; sub.push_back(i); }
+  return sub;
+}
+
+// Re-adds subtree `sub` of the chain's part (rooted at t) to p.next: t with
+// new parameters, its descendants recast; a tab that no longer fits is
+// dropped with its descendants.
+void readd_subtree(Chain& ch, const Context& cx, int t, const std::vector<int>& sub, Proposal& p) {
+  Part& next = p.next;
+  std::map<int, int> where;  // old index -> new index
+  for (int old : sub) {
+    Tab tab = ch.part.tabs[old];
+    if (old != t && !where.count(tab.parent)) continue;  // parent dropped
+    const int parent = old == t ? (tab.parent < t ? tab.parent : -1) : where[tab.parent];
+    if (parent < 0) break;
+    const RealisedPart rp = realise(next);
+    const auto& c = rp.tabs[parent].corners;
+    const double len = (c[(tab.parent_edge + 1) % c.size()] - c[tab.parent_edge]).norm();
+    if (old == t) {
+      auto params = sample_feeler_parameters(cx.prior, cx.spec, len, ch.rng);
+      if (!params) continue;
+      tab.params = *params;
+    } else if (tab.params.d + tab.params.w > len) {
+      continue;
+    }
+    const int i = next.add_tab(parent, tab.parent_edge, tab.params);
+    next.tabs[i].tag = tab.tag;
+    std::optional<RivetPlane> rivet;
+    if (!cast_and_check(cx, next, i, &rivet)) { next.tabs.pop_back(); continue; }
+    where[old] = i;
+    if (rivet)
+      if (auto cand = try_connection(ch, cx, next, i, *rivet)) p.found.push_back(std::move(*cand));
+  }
+}
+
+// Diffusion: a feeler tab picked uniformly (of nf) gets new parameters, its
+// subtree is removed and re-added with its descendants recast.
+Proposal propose_diffusion(Chain& ch, const Context& cx, int nf) {
+  Proposal p;
+  const int t = nth_feeler(ch.part, ch.rng.index(nf));
+  const std::vector<int> sub = subtree(ch.part, t);
+  p.next = remove_subtrees(ch.part, {t});
+  readd_subtree(ch, cx, t, sub, p);
+  p.q_fwd = 1.0 / nf;
+  const int nf2 = feeler_count(p.next);
+  p.q_rev = nf2 > 0 ? 1.0 / nf2 : 0.0;
+  return p;
+}
+
+// An edge drawn with probability weight / total.
+size_t draw_edge(const std::vector<EdgeChoice>& edges, double total, ChainRng& rng) {
+  double u = rng.uniform() * total;
+  size_t k = 0;
+  while (k + 1 < edges.size() && u >= edges[k].weight) { u -= edges[k].weight; ++k; }
+  while (edges[k].weight <= 0 && k > 0) --k;  // round-off guard
+  return k;
+}
+
+// Jump: an edge drawn by the policy weights loses its feeler subtrees and
+// grows a new feeler chain. nullopt when no edge can be drawn.
+std::optional<Proposal> propose_jump(Chain& ch, const Context& cx, const std::vector<double>& pop) {
+  const std::vector<EdgeChoice> edges = jump_edges(ch, cx, ch.part, ch.realised, pop);
+  double total = 0;
+  for (const auto& e : edges) total += e.weight;
+  if (edges.empty() || !(total > 0)) return std::nullopt;
+  const EdgeChoice chosen = edges[draw_edge(edges, total, ch.rng)];
+  Proposal p;
+  p.q_fwd = chosen.weight / total;
+  ++ch.selected[chosen.key];
+  const int owner_tag = ch.part.tabs[chosen.tab].tag;
+  std::vector<int> roots;
+  for (int i = ch.frozen; i < ch.part.size(); ++i)
+    if (ch.part.tabs[i].parent == chosen.tab && ch.part.tabs[i].parent_edge == chosen.edge && is_feeler(ch.part, i))
+      roots.push_back(i);
+  p.next = remove_subtrees(ch.part, roots);
+  const int owner = chosen.tab < ch.frozen ? chosen.tab : find_tag(p.next, owner_tag);
+  grow(ch, cx, p.next, owner, chosen.edge, p.found);
+  const RealisedPart rn = realise(p.next);
+  // reverse: choose the same edge in the new state (selection counts as they are now)
+  const std::vector<EdgeChoice> back = jump_edges(ch, cx, p.next, rn, pop);
+  p.q_rev = choice_probability(back, chosen.key);
+  return p;
+}
+
+// Metropolis-Hastings: an accepted state brings the connections found while building it.
+void accept_or_reject(Chain& ch, const Context& cx, Proposal& p, bool diffuse, const std::vector<double>& pop) {
+  RealisedPart rn = realise(p.next);
+  const double fn = likelihood(ch, cx, p.next, rn, pop);
+  const double a = mh_acceptance(ch.f, fn, p.q_fwd, p.q_rev);
+  if (!(ch.rng.uniform() < a)) return;
+  if (diffuse) ++ch.stats.diffusions_accepted; else ++ch.stats.jumps_accepted;
+  ch.part = std::move(p.next);
+  ch.realised = std::move(rn);
+  ch.f = fn;
+  for (auto& c : p.found) {
+    c.u = ch.rng.uniform();
+    ++ch.stats.candidates;
+    ++ch.stats.found_per_ra[c.segment.rivet_area];
+    ch.found.push_back(std::move(c));
+  }
+}
+
 // One MH iteration of a chain.
 void step(Chain& ch, const Context& cx, const std::vector<int>& counts) {
   const std::vector<double> pop = current_popularity(cx, counts);
-  std::vector<Candidate> found;
-  Part next;
-  double q_fwd = 1, q_rev = 1;
   const int nf = feeler_count(ch.part);
   const bool diffuse = nf > 0 && ch.rng.uniform() < cx.o.diffuse_probability;
+  std::optional<Proposal> p;
   if (diffuse) {
     ++ch.stats.diffusions;
-    // pick a feeler tab uniformly
-    int pick = ch.rng.index(nf), t = -1;
-    for (int i = 1; i < ch.part.size(); ++i)
-      if (is_feeler(ch.part, i) && pick-- == 0) { t = i; break; }
-    // remove its subtree, re-add it with new parameters and its descendants recast
-    std::vector<int> sub;
-    std::vector<char> in(ch.part.size(), 0);
-    for (int i = t; i < ch.part.size(); ++i)
-      if (i == t || (i > 0 && in[ch.part.tabs[i].parent])) { in[i] = 1; sub.push_back(i); }
-    next = remove_subtrees(ch.part, {t});
-    std::map<int, int> where;  // old index -> new index
-    for (int old : sub) {
-      Tab tab = ch.part.tabs[old];
-      if (old != t && !where.count(tab.parent)) continue;  // parent dropped
-      const int parent = old == t ? (tab.parent < t ? tab.parent : -1) : where[tab.parent];
-      if (parent < 0) break;
-      const RealisedPart rp = realise(next);
-      const auto& c = rp.tabs[parent].corners;
-      const double len = (c[(tab.parent_edge + 1) % c.size()] - c[tab.parent_edge]).norm();
-      if (old == t) {
-        auto p = sample_feeler_parameters(cx.prior, cx.spec, len, ch.rng);
-        if (!p) continue;
-        tab.params = *p;
-      } else if (tab.params.d + tab.params.w > len) {
-        continue;
-      }
-      const int i = next.add_tab(parent, tab.parent_edge, tab.params);
-      next.tabs[i].tag = tab.tag;
-      std::optional<RivetPlane> rivet;
-      if (!cast_and_check(cx, next, i, &rivet)) { next.tabs.pop_back(); continue; }
-      where[old] = i;
-      if (rivet)
-        if (auto cand = try_connection(ch, cx, next, i, *rivet)) found.push_back(std::move(*cand));
-    }
-    q_fwd = 1.0 / nf;
-    const int nf2 = feeler_count(next);
-    q_rev = nf2 > 0 ? 1.0 / nf2 : 0.0;
+    p = propose_diffusion(ch, cx, nf);
   } else {
     ++ch.stats.jumps;
-    const std::vector<EdgeChoice> edges = jump_edges(ch, cx, ch.part, ch.realised, pop);
-    double total = 0;
-    for (const auto& e : edges) total += e.weight;
-    if (edges.empty() || !(total > 0)) { ++ch.steps; return; }
-    double u = ch.rng.uniform() * total;
-    size_t k = 0;
-    while (k + 1 < edges.size() && u >= edges[k].weight) { u -= edges[k].weight; ++k; }
-    while (edges[k].weight <= 0 && k > 0) --k;  // round-off guard
-    const EdgeChoice chosen = edges[k];
-    q_fwd = chosen.weight / total;
-    ++ch.selected[chosen.key];
-    const int owner_tag = ch.part.tabs[chosen.tab].tag;
-    std::vector<int> roots;
-    for (int i = ch.frozen; i < ch.part.size(); ++i)
-      if (ch.part.tabs[i].parent == chosen.tab && ch.part.tabs[i].parent_edge == chosen.edge && is_feeler(ch.part, i))
-        roots.push_back(i);
-    next = remove_subtrees(ch.part, roots);
-    const int owner = chosen.tab < ch.frozen ? chosen.tab : find_tag(next, owner_tag);
-    grow(ch, cx, next, owner, chosen.edge, found);
-    const RealisedPart rn = realise(next);
-    // reverse: choose the same edge in the new state (selection counts as they are now)
-    const std::vector<EdgeChoice> back = jump_edges(ch, cx, next, rn, pop);
-    q_rev = choice_probability(back, chosen.key);
+    p = propose_jump(ch, cx, pop);
   }
-  RealisedPart rn = realise(next);
-  const double fn = likelihood(ch, cx, next, rn, pop);
-  const double a = mh_acceptance(ch.f, fn, q_fwd, q_rev);
-  if (ch.rng.uniform() < a) {
-    if (diffuse) ++ch.stats.diffusions_accepted; else ++ch.stats.jumps_accepted;
-    ch.part = std::move(next);
-    ch.realised = std::move(rn);
-    ch.f = fn;
-    for (auto& c : found) {
-      c.u = ch.rng.uniform();
-      ++ch.stats.candidates;
-      ++ch.stats.found_per_ra[c.segment.rivet_area];
-      ch.found.push_back(std::move(c));
-    }
-  }
+  if (p) accept_or_reject(ch, cx, *p, diffuse, pop);
   ++ch.steps;
 }
 
@@ -586,15 +634,119 @@ void unfreeze(Chain& ch, int id) {
   prune_cache(ch);
 }
 
-}  // namespace
-
-DiscoveryResult discover_segments(const Problem& problem, const Environment& env, int load_index,
-                                  const DiscoveryOptions& o, DiscoveryProgress* progress) {
+void check_discovery_inputs(const Problem& problem, int load_index, const DiscoveryOptions& o) {
   if (load_index < 0 || load_index >= static_cast<int>(problem.loads.size()))
     throw std::invalid_argument("discover_segments: load_index " + std::to_string(load_index) + " is not a load of the problem");
   if (o.chains < 1) throw std::invalid_argument("discover_segments: chains must be >= 1, got " + std::to_string(o.chains));
   if (o.iterations < 0) throw std::invalid_argument("discover_segments: iterations must be >= 0");
   if (o.round_length < 1) throw std::invalid_argument("discover_segments: round_length must be >= 1");
+}
+
+std::vector<Chain> start_chains(const Context& cx, const Part& base) {
+  const DiscoveryOptions& o = cx.o;
+  std::vector<Chain> chains(o.chains);
+  for (int c = 0; c < o.chains; ++c) {
+    chains[c].index = c;
+    chains[c].rng = ChainRng(ChainRng::seed_for(o.seed, c));
+    chains[c].part = base;
+    chains[c].realised = realise(chains[c].part);
+    chains[c].f = o.target.empty_likelihood;
+    for (auto* v : {&chains[c].stats.found_per_ra, &chains[c].stats.optimised_per_ra, &chains[c].stats.failed_per_ra,
+                    &chains[c].stats.admitted_per_ra})
+      v->assign(cx.nra, 0);
+  }
+  return chains;
+}
+
+// Web roots go into the library first and into every chain, frozen: the
+// chains grow feelers from their edges like from any admitted segment.
+void add_web_roots(DiscoveryResult& result, std::vector<Chain>& chains, const Context& cx) {
+  for (Segment& web : make_web_roots(result.base, cx.env, cx.spec, cx.prior, cx.o.webs)) {
+    const AdmissionResult r = result.library.add(std::move(web));
+    for (auto& ch : chains) freeze(ch, *result.library.find(r.id), /*feeler_tag=*/-1);
+  }
+}
+
+bool cancel_requested(const DiscoveryProgress* progress) {
+  return progress && progress->cancel.load(std::memory_order_relaxed);
+}
+
+// Before a round: the chains' states scored with the library's current popularity.
+void refresh_chains(std::vector<Chain>& chains, const Context& cx, const std::vector<int>& counts) {
+  for (auto& ch : chains) {
+    ch.realised = realise(ch.part);
+    prune_cache(ch);
+    ch.f = likelihood(ch, cx, ch.part, ch.realised, popularity_factors(counts, cx.o.target.beta));
+  }
+}
+
+// Iterations [start, end) of every chain in parallel, each chain then
+// selecting its connections against `snapshot` (read-only during the round).
+void run_round(tbb::task_arena& arena, std::vector<Chain>& chains, const Context& cx, const std::vector<int>& counts,
+               const SegmentLibrary& snapshot, int start, int end, DiscoveryProgress* progress) {
+  arena.execute([&] {
+    tbb::parallel_for(0, cx.o.chains, [&](int c) {
+      Chain& ch = chains[c];
+      for (int it = start; it < end; ++it) {
+        if (cancel_requested(progress)) break;
+        step(ch, cx, counts);
+        if (progress) progress->iterations.fetch_add(1, std::memory_order_relaxed);
+      }
+      // Optimising the round's connections (contraction, widening) is the
+      // slow part of a round; a cancelled run does not wait for it.
+      if (!cancel_requested(progress)) select_for_library(ch, cx, snapshot);
+    });
+  });
+}
+
+// Offers one queued segment of chain ch to the library and freezes it into
+// the chain when admitted; a replaced segment leaves every chain's part.
+void admit(Candidate& cand, Chain& ch, std::vector<Chain>& chains, SegmentLibrary& library, SegmentPolicy policy) {
+  if (cand.segment.parent >= 0 && !library.find(cand.segment.parent)) { ++ch.stats.rejected; return; }
+  AdmissionResult r;
+  if (policy == SegmentPolicy::Ours) r = library.offer(cand.segment, cand.u);
+  else r = library.add(cand.segment);
+  switch (r.outcome) {
+    case Admission::Admitted: ++ch.stats.admitted; ++ch.stats.admitted_per_ra[cand.segment.rivet_area]; break;
+    case Admission::Replaced: ++ch.stats.replaced; ++ch.stats.admitted_per_ra[cand.segment.rivet_area]; break;
+    case Admission::Rejected: ++ch.stats.rejected; return;
+    case Admission::Full: ++ch.stats.full; return;
+  }
+  if (r.outcome == Admission::Replaced) {
+    for (auto& other : chains)
+      if (find_tag(other.part, r.replaced) >= 0) unfreeze(other, r.replaced);
+  }
+  cand.segment.id = r.id;
+  freeze(ch, *library.find(r.id), cand.feeler_tag);
+}
+
+// Admissions in chain order (determinism).
+void admit_round(std::vector<Chain>& chains, SegmentLibrary& library, SegmentPolicy policy) {
+  for (auto& ch : chains) {
+    for (auto& cand : ch.queue) admit(cand, ch, chains, library, policy);
+    ch.queue.clear();
+  }
+}
+
+void add_counts(std::vector<long long>& a, const std::vector<long long>& b) {
+  if (a.size() < b.size()) a.resize(b.size(), 0);
+  for (size_t k = 0; k < b.size(); ++k) a[k] += b[k];
+}
+
+void add_chain_stats(DiscoveryStats& t, const DiscoveryStats& s) {
+  t.jumps += s.jumps; t.jumps_accepted += s.jumps_accepted;
+  t.diffusions += s.diffusions; t.diffusions_accepted += s.diffusions_accepted;
+  t.candidates += s.candidates; t.optimised += s.optimised; t.optimise_failed += s.optimise_failed;
+  t.admitted += s.admitted; t.replaced += s.replaced; t.rejected += s.rejected; t.full += s.full;
+  add_counts(t.found_per_ra, s.found_per_ra); add_counts(t.optimised_per_ra, s.optimised_per_ra);
+  add_counts(t.failed_per_ra, s.failed_per_ra); add_counts(t.admitted_per_ra, s.admitted_per_ra);
+}
+
+}  // namespace
+
+DiscoveryResult discover_segments(const Problem& problem, const Environment& env, int load_index,
+                                  const DiscoveryOptions& o, DiscoveryProgress* progress) {
+  check_discovery_inputs(problem, load_index, o);
   const auto t0 = std::chrono::steady_clock::now();
   Context cx{problem, env, o, SheetSpec::from(problem), {}, env.rivet_area_count()};
   cx.prior = resolve_prior(o.prior, cx.spec);
@@ -602,24 +754,8 @@ DiscoveryResult discover_segments(const Problem& problem, const Environment& env
   DiscoveryResult result;
   result.library = SegmentLibrary(o.library);
   result.base = make_base_part(problem.loads[load_index], load_index, cx.spec.thickness);
-  std::vector<Chain> chains(o.chains);
-  for (int c = 0; c < o.chains; ++c) {
-    chains[c].index = c;
-    chains[c].rng = ChainRng(ChainRng::seed_for(o.seed, c));
-    chains[c].part = result.base;
-    chains[c].realised = realise(chains[c].part);
-    chains[c].f = o.target.empty_likelihood;
-    for (auto* v : {&chains[c].stats.found_per_ra, &chains[c].stats.optimised_per_ra, &chains[c].stats.failed_per_ra,
-                    &chains[c].stats.admitted_per_ra})
-      v->assign(cx.nra, 0);
-  }
-  // Web roots go into the library first and into every chain, frozen: the
-  // chains grow feelers from their edges like from any admitted segment.
-  if (o.web_roots)
-    for (Segment& web : make_web_roots(result.base, env, cx.spec, cx.prior, o.webs)) {
-      const AdmissionResult r = result.library.add(std::move(web));
-      for (auto& ch : chains) freeze(ch, *result.library.find(r.id), /*feeler_tag=*/-1);
-    }
+  std::vector<Chain> chains = start_chains(cx, result.base);
+  if (o.web_roots) add_web_roots(result, chains, cx);
   if (progress) {
     progress->total = static_cast<long long>(o.chains) * o.iterations;
     progress->iterations = 0;
@@ -629,67 +765,15 @@ DiscoveryResult discover_segments(const Problem& problem, const Environment& env
   bool cancelled = false;
   for (int start = 0; start < o.iterations && !cancelled; start += o.round_length) {
     const int end = std::min(o.iterations, start + o.round_length);
-    const SegmentLibrary& snapshot = result.library;  // read-only during the round
-    for (auto& ch : chains) {
-      ch.realised = realise(ch.part);
-      prune_cache(ch);
-      ch.f = likelihood(ch, cx, ch.part, ch.realised, popularity_factors(counts, o.target.beta));
-    }
-    arena.execute([&] {
-      tbb::parallel_for(0, o.chains, [&](int c) {
-        Chain& ch = chains[c];
-        for (int it = start; it < end; ++it) {
-          if (progress && progress->cancel.load(std::memory_order_relaxed)) break;
-          step(ch, cx, counts);
-          if (progress) progress->iterations.fetch_add(1, std::memory_order_relaxed);
-        }
-        // Optimising the round's connections (contraction, widening) is the
-        // slow part of a round; a cancelled run does not wait for it.
-        if (!(progress && progress->cancel.load(std::memory_order_relaxed))) select_for_library(ch, cx, snapshot);
-      });
-    });
+    refresh_chains(chains, cx, counts);
+    run_round(arena, chains, cx, counts, result.library, start, end, progress);
     if (progress && progress->cancel.load()) cancelled = true;
-    // Admissions in chain order (determinism).
-    for (auto& ch : chains) {
-      for (auto& cand : ch.queue) {
-        if (cand.segment.parent >= 0 && !result.library.find(cand.segment.parent)) { ++ch.stats.rejected; continue; }
-        AdmissionResult r;
-        if (o.segment_policy == SegmentPolicy::Ours) r = result.library.offer(cand.segment, cand.u);
-        else r = result.library.add(cand.segment);
-        switch (r.outcome) {
-          case Admission::Admitted: ++ch.stats.admitted; ++ch.stats.admitted_per_ra[cand.segment.rivet_area]; break;
-          case Admission::Replaced: ++ch.stats.replaced; ++ch.stats.admitted_per_ra[cand.segment.rivet_area]; break;
-          case Admission::Rejected: ++ch.stats.rejected; continue;
-          case Admission::Full: ++ch.stats.full; continue;
-        }
-        if (r.outcome == Admission::Replaced) {
-          // the old segment leaves its chain's part
-          for (auto& other : chains)
-            if (find_tag(other.part, r.replaced) >= 0) unfreeze(other, r.replaced);
-        }
-        cand.segment.id = r.id;
-        freeze(ch, *result.library.find(r.id), cand.feeler_tag);
-      }
-      ch.queue.clear();
-    }
+    admit_round(chains, result.library, o.segment_policy);
     counts = result.library.counts_per_rivet_area(cx.nra);
     ++result.stats.rounds;
     if (progress) progress->segments = result.library.size();
   }
-  for (const auto& ch : chains) {
-    const DiscoveryStats& s = ch.stats;
-    DiscoveryStats& t = result.stats;
-    t.jumps += s.jumps; t.jumps_accepted += s.jumps_accepted;
-    t.diffusions += s.diffusions; t.diffusions_accepted += s.diffusions_accepted;
-    t.candidates += s.candidates; t.optimised += s.optimised; t.optimise_failed += s.optimise_failed;
-    t.admitted += s.admitted; t.replaced += s.replaced; t.rejected += s.rejected; t.full += s.full;
-    auto acc = [&](std::vector<long long>& a, const std::vector<long long>& b) {
-      if (a.size() < b.size()) a.resize(b.size(), 0);
-      for (size_t k = 0; k < b.size(); ++k) a[k] += b[k];
-    };
-    acc(t.found_per_ra, s.found_per_ra); acc(t.optimised_per_ra, s.optimised_per_ra);
-    acc(t.failed_per_ra, s.failed_per_ra); acc(t.admitted_per_ra, s.admitted_per_ra);
-  }
+  for (const auto& ch : chains) add_chain_stats(result.stats, ch.stats);
   result.library.compact();
   result.stats.per_rivet_area = result.library.counts_per_rivet_area(cx.nra);
   result.cancelled = cancelled;
