@@ -6,6 +6,7 @@
 #include <CGAL/Triangulation_vertex_base_with_info_2.h>
 
 #include <algorithm>
+#include <cmath>
 #include <numeric>
 #include <string>
 #include <utility>
@@ -40,15 +41,29 @@ void check_input(const std::vector<Vec2>& points, const std::vector<int>& outlin
     if (!points[i].allFinite()) throw FemError("point " + std::to_string(i), "is not finite");
 }
 
-// CGAL merges equal points into one vertex; name the first pair instead.
-void throw_duplicate(const std::vector<Vec2>& points) {
+// Insertion order: a snake over a coarse grid of the points' bounding box
+// (about 4 points a cell, alternate rows reversed), so that each point is
+// found by a short walk from the one before. CGAL's own spatial sort (Hilbert
+// order) gives the same walks but took 10 % of the mesher's time.
+std::vector<int> snake_order(const std::vector<Vec2>& points) {
+  Vec2 lo = points[0], hi = points[0];
+  for (const Vec2& p : points) {
+    lo = lo.cwiseMin(p);
+    hi = hi.cwiseMax(p);
+  }
+  const double size = std::max((hi - lo).maxCoeff(), 1e-300);
+  const int cells = std::max(1, static_cast<int>(std::sqrt(points.size() / 4.0)));
+  std::vector<long long> key(points.size());
+  for (size_t i = 0; i < points.size(); ++i) {
+    const int cy = std::min(cells - 1, static_cast<int>((points[i].y() - lo.y()) / size * cells));
+    int cx = std::min(cells - 1, static_cast<int>((points[i].x() - lo.x()) / size * cells));
+    if (cy % 2) cx = cells - 1 - cx;
+    key[i] = static_cast<long long>(cy) * cells + cx;
+  }
   std::vector<int> order(points.size());
   std::iota(order.begin(), order.end(), 0);
-  auto key = [&](int i) { return std::make_pair(points[i].x(), points[i].y()); };
-  std::sort(order.begin(), order.end(), [&](int a, int b) { return key(a) < key(b) || (key(a) == key(b) && a < b); });
-  for (size_t k = 1; k < order.size(); ++k)
-    if (key(order[k - 1]) == key(order[k]))
-      throw FemError("point " + std::to_string(order[k]), "duplicates point " + std::to_string(order[k - 1]));
+  std::stable_sort(order.begin(), order.end(), [&](int a, int b) { return key[a] < key[b]; });
+  return order;
 }
 
 // Marks the finite faces inside the outline: those not reachable from the
@@ -73,16 +88,19 @@ void mark_inside(Cdt& cdt) {
 
 PolygonTriangulation triangulate_polygon(const std::vector<Vec2>& points, const std::vector<int>& outline) {
   check_input(points, outline);
-  std::vector<std::pair<Kernel::Point_2, int>> input;
-  input.reserve(points.size());
-  for (size_t i = 0; i < points.size(); ++i)
-    input.emplace_back(Kernel::Point_2(points[i].x(), points[i].y()), static_cast<int>(i));
   Cdt cdt;
-  cdt.insert(input.begin(), input.end());  // spatially sorted insertion
-  if (cdt.number_of_vertices() != points.size()) throw_duplicate(points);
-
   std::vector<Cdt::Vertex_handle> vertex(points.size());
-  for (Cdt::Vertex_handle v : cdt.finite_vertex_handles()) vertex[v->info()] = v;
+  Cdt::Face_handle hint;
+  for (int i : snake_order(points)) {
+    const size_t before = cdt.number_of_vertices();
+    const Cdt::Vertex_handle v = cdt.insert(Kernel::Point_2(points[i].x(), points[i].y()), hint);
+    if (cdt.number_of_vertices() == before)  // CGAL returned the vertex already there
+      throw FemError("point " + std::to_string(std::max(i, v->info())),
+                     "duplicates point " + std::to_string(std::min(i, v->info())));
+    v->info() = i;
+    vertex[i] = v;
+    hint = v->face();
+  }
   try {
     for (size_t i = 0; i < outline.size(); ++i)
       cdt.insert_constraint(vertex[outline[i]], vertex[outline[(i + 1) % outline.size()]]);
