@@ -3,16 +3,13 @@
 run and for 1 and 2 threads (issue 9, point 5); a different seed gives a
 different result.
 
-Run: /usr/bin/python3 tests/python/test_determinism.py --sheetgen build/native/cli/sheetgen
+Run: PYTHONPATH=tools /usr/bin/python3 tests/python/test_determinism.py --sheetgen build/native/cli/sheetgen
 """
 import argparse
-import json
 import os
-import subprocess
 import sys
-import tempfile
 
-ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
+from sheetgen_tools import paths, runner
 
 
 def strip_timing(x):
@@ -24,13 +21,11 @@ def strip_timing(x):
 
 
 def run(sheetgen, threads, seed):
-    out = tempfile.mkdtemp(prefix="sheetgen_det_")
-    p = subprocess.run([sheetgen, "solve", os.path.join(ROOT, "sample_scenes", "corner", "problem.json"), "--out", out,
-                        "--chains", "4", "--iterations", "200", "--threads", str(threads), "--seed", str(seed)],
-                       capture_output=True, text=True)
-    if p.returncode not in (0, 2):
-        raise SystemExit("solve failed: " + p.stderr)
-    doc = json.load(open(os.path.join(out, "result.json")))
+    options = runner.SolveOptions(chains=4, iterations=200, threads=threads, seed=seed, sheetgen=sheetgen)
+    solved = runner.solve(paths.scene_problem("corner"), options=options)
+    if not solved.finished:
+        raise SystemExit("solve failed: " + solved.stderr)
+    doc, out = solved.result, solved.out_dir
     dxf = {}
     for part in doc["parts"]:
         path = os.path.join(out, part["load"], "flat.dxf")

@@ -1,5 +1,5 @@
 #!/usr/bin/python3
-"""The solid model of tests/python/solid_reference.py against a closed form and
+"""The solid model of sheetgen_tools.solid_reference against a closed form and
 against CalculiX's own shells where those are reliable.
 
 * A bar (120 x 20 mm, 1.6 mm aluminium) clamped at one end, pulled by 100 N
@@ -10,18 +10,16 @@ against CalculiX's own shells where those are reliable.
   at h = 1.2 mm) and lies between the beam formulas with E I (narrow) and
   D b (plane strain).
 
-Both run at the size verify_result.py uses (solid_reference.DEFAULT_SIZE). Needs ccx and gmsh.
-Run: /usr/bin/python3 -m unittest tests/python/test_solid_reference.py
+Both run at the size sheetgen_tools.verify uses (solid_reference.DEFAULT_SIZE). Needs ccx and gmsh.
+Run: PYTHONPATH=tools /usr/bin/python3 -m unittest tests/python/test_solid_reference.py
 """
 import os
-import sys
 import tempfile
 import unittest
 
 import numpy as np
 
-sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-import solid_reference  # noqa: E402
+from sheetgen_tools import solid_reference
 
 T, E, NU = 1.6e-3, 73.1e9, 0.33
 H = solid_reference.DEFAULT_SIZE * T
@@ -110,7 +108,7 @@ class SolidReference(unittest.TestCase):
 
     def test_self_riveted_sheets_apart_are_refused(self):
         # Sheets more than t apart would not touch in the fused solid (the tie would be
-        # lost), and a result without the tie points cannot be placed: verify_result
+        # lost), and a result without the tie points cannot be placed: the check
         # falls back to S8R for both.
         deck = "*SHELL SECTION, ELSET=EALL, MATERIAL=M\n0.0016\n"
         apart = {"tabs": [], "rivets": [], "self_rivets": [{"tabs": [1, 2], "points": [[0, 0, 0], [0, 0, 0.0025]]}]}

@@ -3,7 +3,7 @@
 code and a per-load reason a user can act on, and Ctrl-C ends a run within a
 second leaving nothing that looks finished.
 
-Run: /usr/bin/python3 tests/python/test_solve_hard_cases.py --sheetgen build/native/cli/sheetgen
+Run: PYTHONPATH=tools /usr/bin/python3 tests/python/test_solve_hard_cases.py --sheetgen build/native/cli/sheetgen
 """
 import argparse
 import json
@@ -15,8 +15,10 @@ import tempfile
 import time
 import unittest
 
+from sheetgen_tools import runner
+
 SHEETGEN = None
-QUICK = ["--chains", "4", "--iterations", "150", "--threads", "2"]
+QUICK = {"chains": 4, "iterations": 150, "threads": 2}
 
 
 def floor_and_wall(extra_meshes=(), ras=None, loads=None, requirements=None):
@@ -43,14 +45,19 @@ def box_mesh(name, lo, hi):
     return {"name": name, "vertices": v, "triangles": t}
 
 
-def solve(problem, *extra):
-    d = tempfile.mkdtemp(prefix="sheetgen_hard_")
+def write_problem(problem, prefix):
+    """problem.json in a fresh temporary folder; returns (its path, the folder's out/)."""
+    d = tempfile.mkdtemp(prefix=prefix)
     path = os.path.join(d, "problem.json")
     json.dump(problem, open(path, "w"))
-    out = os.path.join(d, "out")
-    p = subprocess.run([SHEETGEN, "solve", path, "--out", out] + QUICK + list(extra), capture_output=True, text=True)
-    result = json.load(open(os.path.join(out, "result.json"))) if os.path.exists(os.path.join(out, "result.json")) else None
-    return p, result, out
+    return path, os.path.join(d, "out")
+
+
+def solve(problem, *flags, env=None, out=None):
+    """A quick solve of `problem` (a dict): (runner.SolveRun, result.json or None, the output folder)."""
+    path, default_out = write_problem(problem, "sheetgen_hard_")
+    p = runner.solve(path, out or default_out, runner.SolveOptions(**QUICK, flags=flags, env=env, sheetgen=SHEETGEN))
+    return p, p.result, p.out_dir
 
 
 class HardCases(unittest.TestCase):
@@ -64,7 +71,7 @@ class HardCases(unittest.TestCase):
             "triangles": [[4, 5, 6], [4, 6, 7], [0, 1, 5], [0, 5, 4], [1, 2, 6], [1, 6, 5], [2, 3, 7], [2, 7, 6], [3, 0, 4], [3, 4, 7]]}
         prob["rivet_areas"] = [{"name": "under_cabinet", "mesh": "floor", "faces": [0, 1]}]
         p, result, _ = solve(prob)
-        self.assertEqual(p.returncode, 2, p.stdout + p.stderr)
+        self.assertEqual(p.exit_code, 2, p.stdout + p.stderr)
         part = result["parts"][0]
         self.assertEqual(part["status"], "no_valid_part")
         self.assertIn("no segment reached a rivet area", part["reason"])
@@ -72,7 +79,7 @@ class HardCases(unittest.TestCase):
     def test_load_inside_an_obstacle_is_exit_2_with_reason(self):
         prob = floor_and_wall(extra_meshes=[box_mesh("crate", [0.2, -0.1, 0.1], [0.4, 0.1, 0.4])])
         p, result, _ = solve(prob)
-        self.assertEqual(p.returncode, 2, p.stdout + p.stderr)
+        self.assertEqual(p.exit_code, 2, p.stdout + p.stderr)
         reason = result["parts"][0]["reason"]
         self.assertIn("load 'box' lies inside a closed obstacle", reason)
 
@@ -80,7 +87,7 @@ class HardCases(unittest.TestCase):
         # The box rests on a crate: its base tab would have to pass through the crate's top.
         prob = floor_and_wall(extra_meshes=[box_mesh("crate", [0.2, -0.1, 0.0], [0.4, 0.1, 0.21])])
         p, result, _ = solve(prob)
-        self.assertEqual(p.returncode, 2, p.stdout + p.stderr)
+        self.assertEqual(p.exit_code, 2, p.stdout + p.stderr)
         reason = result["parts"][0]["reason"]
         self.assertIn("base tab under load 'box' is not clear", reason)
         self.assertIn("overlaps or touches an obstacle", reason)
@@ -89,7 +96,7 @@ class HardCases(unittest.TestCase):
         # A 1 micrometre deflection under 100 N: no 1.6 mm aluminium bracket is that stiff.
         prob = floor_and_wall(requirements={"max_deflection": 1e-6})
         p, result, _ = solve(prob)
-        self.assertEqual(p.returncode, 2, p.stdout + p.stderr)
+        self.assertEqual(p.exit_code, 2, p.stdout + p.stderr)
         reason = result["parts"][0]["reason"]
         self.assertIn("compliance", reason)
         self.assertIn("over the limit", reason)
@@ -99,16 +106,12 @@ class HardCases(unittest.TestCase):
         self.assertTrue(result["search"]["flat_fallback"])
         # Flat extensions already on: no third search (it would repeat the first).
         p, result, _ = solve(prob, "--flat-extensions")
-        self.assertEqual(p.returncode, 2, p.stdout + p.stderr)
+        self.assertEqual(p.exit_code, 2, p.stdout + p.stderr)
         self.assertFalse(result["parts"][0]["flat_pass_tried"])
         self.assertFalse(result["search"]["flat_fallback"])
 
     def test_ctrl_c_ends_within_a_second_and_writes_nothing(self):
-        prob = floor_and_wall()
-        d = tempfile.mkdtemp(prefix="sheetgen_sigint_")
-        path = os.path.join(d, "problem.json")
-        json.dump(prob, open(path, "w"))
-        out = os.path.join(d, "out")
+        path, out = write_problem(floor_and_wall(), "sheetgen_sigint_")
         # 20 x the default iterations: the default run ends in about 2 s on
         # two threads, and this test must interrupt it while it is going.
         proc = subprocess.Popen([SHEETGEN, "solve", path, "--out", out, "--threads", "2", "--iterations", "20000"],
@@ -134,15 +137,12 @@ class HardCases(unittest.TestCase):
                   "size": [0.03, 0.03, 0.02], "force": [0, 0, -10]} for i in range(100) for j in range(100)]
         prob = floor_and_wall(loads=loads)
         prob["environment"]["meshes"][0]["vertices"] = [[0, -3, 0], [6, -3, 0], [6, 3, 0], [0, 3, 0]]
-        d = tempfile.mkdtemp(prefix="sheetgen_10k_")
-        path = os.path.join(d, "problem.json")
-        json.dump(prob, open(path, "w"))
+        path, out = write_problem(prob, "sheetgen_10k_")
         t0 = time.monotonic()
         chk = subprocess.run([SHEETGEN, "check", path], capture_output=True, text=True)
         self.assertEqual(chk.returncode, 0, chk.stderr)
         self.assertIn("loads: 10000", chk.stdout)
         print("check of 10 000 loads: %.2f s" % (time.monotonic() - t0))
-        out = os.path.join(d, "out")
         # 20 x the default iterations: the default run ends in about 2 s on
         # two threads, and this test must interrupt it while it is going.
         proc = subprocess.Popen([SHEETGEN, "solve", path, "--out", out, "--threads", "2", "--iterations", "20000"],
@@ -167,28 +167,18 @@ class HardCases(unittest.TestCase):
 
     def test_exception_in_a_worker_thread_reaches_the_caller(self):
         # SHEETGEN_INJECT_FAULT=composition throws inside a TBB composition task.
-        prob = floor_and_wall()
-        d = tempfile.mkdtemp(prefix="sheetgen_fault_")
-        path = os.path.join(d, "problem.json")
-        json.dump(prob, open(path, "w"))
-        out = os.path.join(d, "out")
-        p = subprocess.run([SHEETGEN, "solve", path, "--out", out] + QUICK, capture_output=True, text=True,
-                           env=dict(os.environ, SHEETGEN_INJECT_FAULT="composition"))
-        self.assertEqual(p.returncode, 3, p.stderr)
+        p, _, out = solve(floor_and_wall(), env={"SHEETGEN_INJECT_FAULT": "composition"})
+        self.assertEqual(p.exit_code, 3, p.stderr)
         self.assertEqual(p.stderr.strip(), "sheetgen: internal error: injected fault in a composition worker")
         self.assertFalse(os.path.exists(os.path.join(out, "result.json")))
 
     def test_unwritable_output_is_an_error_not_a_half_written_folder(self):
         # --out names an existing regular file: the folder cannot be made (this works as root too,
         # where permission bits would not stop a write).
-        prob = floor_and_wall()
-        d = tempfile.mkdtemp(prefix="sheetgen_ro_")
-        path = os.path.join(d, "problem.json")
-        json.dump(prob, open(path, "w"))
-        out = os.path.join(d, "not_a_folder")
+        out = os.path.join(tempfile.mkdtemp(prefix="sheetgen_ro_"), "not_a_folder")
         open(out, "w").write("keep me")
-        p = subprocess.run([SHEETGEN, "solve", path, "--out", out] + QUICK, capture_output=True, text=True)
-        self.assertEqual(p.returncode, 1, p.stderr)
+        p, _, _ = solve(floor_and_wall(), out=out)
+        self.assertEqual(p.exit_code, 1, p.stderr)
         self.assertIn("cannot create the output folder", p.stderr)
         self.assertEqual(len(p.stderr.strip().splitlines()), 1, p.stderr)
         self.assertEqual(open(out).read(), "keep me")

@@ -1,17 +1,15 @@
-"""verify_result.py's brute-force clearance check on hand-made parts with known
+"""The brute-force clearance check (sheetgen_tools.clearance) on hand-made parts with known
 distances: a tab next to a rivet flange may come within t/2 of that flange's
 rivet area inside the bend zone between them, whichever of the two is the
 parent (check_validity's rule, docs/grammar.md); anywhere else it may not. And
 the parts of a multi-load problem keep the clearance from each other's faces."""
-import argparse
-import os
-import sys
 import unittest
 
 import numpy as np
 
-sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-import verify_result  # noqa: E402
+from sheetgen_tools.clearance import check_clearance
+from sheetgen_tools.findings import Findings
+from sheetgen_tools.geometry import part_faces
 
 T = 1.6e-3
 
@@ -44,15 +42,10 @@ def flange_and_gusset(gusset_parent_is_flange):
 
 
 def run(tabs):
-    report, bad = [], []
-    part = {"load": "box", "tabs": tabs}
-    args = argparse.Namespace(no_ccx=True)
-    try:
-        verify_result.check_part("/nonexistent", problem(), meshes(), part, args, report, bad)
-    except FileNotFoundError:
-        pass  # the DXF check comes last and needs a solve's output folder; clearance is reported by then
-    assert any("min clearance" in r for r in report), report
-    return report, bad
+    findings = Findings()
+    check_clearance(problem(), meshes(), {"load": "box", "tabs": tabs}, findings)
+    assert any("min clearance" in r for r in findings.lines), findings.lines
+    return findings.lines, findings.failures
 
 
 class FlangeBendZone(unittest.TestCase):
@@ -80,13 +73,9 @@ class PartsAvoidEachOther(unittest.TestCase):
     def check(self, gap):
         earlier = {"load": "first", "tabs": [self.plate(0.3)]}
         later = {"load": "box", "tabs": [self.plate(0.3 + gap)]}
-        report, bad = [], []
-        ms = {**meshes(), "part:first": verify_result.part_faces(earlier, T)}
-        try:
-            verify_result.check_part("/nonexistent", problem(), ms, later, argparse.Namespace(no_ccx=True), report, bad)
-        except FileNotFoundError:
-            pass
-        return report, bad
+        findings = Findings()
+        check_clearance(problem(), {**meshes(), "part:first": part_faces(earlier, T)}, later, findings)
+        return findings.lines, findings.failures
 
     def test_faces_not_mid_surfaces(self):
         # Mid-surfaces 2.6 mm apart: the sheets' facing surfaces are 1.0 mm apart,
