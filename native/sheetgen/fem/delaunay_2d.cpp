@@ -9,7 +9,6 @@
 #include <cmath>
 #include <numeric>
 #include <string>
-#include <utility>
 
 #include "sheetgen/fem/fem_error.hpp"
 
