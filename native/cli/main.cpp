@@ -106,11 +106,10 @@ struct ExportCcxArgs {
   bool kirchhoff = false;           // with --solve: our DKT (no transverse shear) instead of DKMT, for studies
 };
 
-int export_ccx(const ExportCcxArgs& a) {
-  const std::string& result_path = a.result;
-  const std::string& load_name = a.load;
-  const std::string& out_path = a.out;
-  namespace fs = std::filesystem;
+namespace fs = std::filesystem;
+
+// A sheetgen-result/1 document.
+nlohmann::json read_result_json(const std::string& result_path) {
   std::ifstream in(fs::u8path(result_path), std::ios::binary);
   if (!in) throw sheetgen::InputError(result_path, "", "cannot be opened");
   std::stringstream ss;
@@ -123,15 +122,28 @@ int export_ccx(const ExportCcxArgs& a) {
   }
   if (!doc.is_object() || doc.value("format", "") != "sheetgen-result/1")
     throw sheetgen::InputError(result_path, "format", "expected \"sheetgen-result/1\"");
+  return doc;
+}
+
+// The problem file the result solves ("problem", relative to result.json).
+sheetgen::Problem problem_of(const nlohmann::json& doc, const std::string& result_path) {
   if (!doc.contains("problem") || !doc["problem"].is_string())
     throw sheetgen::InputError(result_path, "problem", "required field is missing (the problem file this result solves)");
   fs::path problem_path = fs::u8path(doc["problem"].get<std::string>());
   if (problem_path.is_relative()) problem_path = fs::u8path(result_path).parent_path() / problem_path;
-  const sheetgen::Problem problem = sheetgen::load_problem(problem_path.u8string());
+  return sheetgen::load_problem(problem_path.u8string());
+}
+
+int load_index_of(const sheetgen::Problem& problem, const std::string& load_name, const std::string& result_path) {
   int load_index = -1;
   for (size_t i = 0; i < problem.loads.size(); ++i)
     if (problem.loads[i].name == load_name) load_index = static_cast<int>(i);
   if (load_index < 0) throw sheetgen::InputError(result_path, "--load", "the problem has no load named '" + load_name + "'");
+  return load_index;
+}
+
+// The load's valid part in the result.
+const nlohmann::json& part_of(const nlohmann::json& doc, const std::string& load_name, const std::string& result_path) {
   const nlohmann::json* part = nullptr;
   if (doc.contains("parts") && doc["parts"].is_array())
     for (const auto& pj : doc["parts"])
@@ -139,18 +151,17 @@ int export_ccx(const ExportCcxArgs& a) {
   if (!part) throw sheetgen::InputError(result_path, "parts", "no part for load '" + load_name + "'");
   if (part->value("status", "ok") != "ok" || !part->contains("tabs"))
     throw sheetgen::InputError(result_path, "parts[load=" + load_name + "]", "has no valid part to export");
-  const sheetgen::PlateGeometry geometry = sheetgen::plate_geometry_from_json(part->dump(), result_path);
-  sheetgen::PartModelOptions model_options;
-  model_options.element_size = a.element_size_mm * 1e-3;
-  model_options.self_rivets = sheetgen::self_rivet_ties_from_json(part->dump(), result_path);
-  const sheetgen::PartModel model = sheetgen::build_part_model(problem, load_index, geometry, model_options);
-  // Write beside the target and rename: a failed run leaves no half-written deck.
-  const fs::path out = fs::u8path(out_path);
+  return *part;
+}
+
+// Writes beside the target and renames: a failed run leaves no half-written deck.
+sheetgen::CcxDeckMap write_deck(const sheetgen::PartModel& model, const ExportCcxArgs& a) {
+  const fs::path out = fs::u8path(a.out);
   const fs::path tmp = out.parent_path() / (out.filename().u8string() + ".tmp");
   sheetgen::CcxDeckMap map;
   {
     std::ofstream deck(tmp, std::ios::binary);
-    if (!deck) throw sheetgen::InputError(out_path, "--out", "cannot be written (" + std::string(std::strerror(errno)) + ")");
+    if (!deck) throw sheetgen::InputError(a.out, "--out", "cannot be written (" + std::string(std::strerror(errno)) + ")");
     sheetgen::CcxExportOptions deck_options;
     deck_options.element_type = a.element_type;
     map = sheetgen::write_ccx_deck(model.model, deck, deck_options);
@@ -158,43 +169,64 @@ int export_ccx(const ExportCcxArgs& a) {
     if (!deck) {
       std::error_code ec;
       fs::remove(tmp, ec);
-      throw sheetgen::InputError(out_path, "--out", "write failed (disk full?)");
+      throw sheetgen::InputError(a.out, "--out", "write failed (disk full?)");
     }
-    std::printf("wrote %s: %d nodes, %d %s elements, %zu rivets clamped, load at node %d\n", out_path.c_str(),
+    std::printf("wrote %s: %d nodes, %d %s elements, %zu rivets clamped, load at node %d\n", a.out.c_str(),
                 map.node_count, map.element_count, a.element_type.c_str(), model.rivets.size(),
                 map.ref_node.empty() ? -1 : map.ref_node.back());
   }
   fs::rename(tmp, out);
-  if (a.solve) {
-    sheetgen::ShellElementOptions element;
-    element.transverse_shear = !a.kirchhoff;
-    const sheetgen::ShellSolveOptions solve_options = sheetgen::part_solve_options(problem, element);
-    const sheetgen::ShellResult r = sheetgen::solve_shell(model.model, solve_options);
-    std::printf("ours: h = %.4g mm, %zu triangles, %d DOF, compliance %.8g J, deflection %.8g mm\n",
-                model.mesh.element_size * 1e3, model.model.triangles.size(), r.reduced_dofs, r.compliance,
-                r.load_deflection * 1e3);
-    if (r.max_von_mises_element >= 0) {
-      const auto& tri = model.model.triangles[r.max_von_mises_element];
-      const sheetgen::Vec3 c = (model.model.nodes[tri[0]] + model.model.nodes[tri[1]] + model.model.nodes[tri[2]]) / 3.0;
-      std::printf("ours: max von Mises %.6g MPa (stress rule) at element centroid (%.2f, %.2f, %.2f) mm, MS %.4g\n",
-                  r.max_von_mises * 1e-6, c.x() * 1e3, c.y() * 1e3, c.z() * 1e3, r.margin_of_safety);
-    }
-    if (!a.displacements.empty()) {
-      // Node by node against CalculiX's .dat: where the two solvers part.
-      std::ofstream csv(fs::u8path(a.displacements), std::ios::binary);
-      if (!csv) throw sheetgen::InputError(a.displacements, "--displacements", "cannot be written");
-      csv << "deck_node,x_m,y_m,z_m,ux_m,uy_m,uz_m\n";
-      char line[256];
-      for (size_t i = 0; i < r.displacements.size() && i < map.node_id.size(); ++i) {
-        if (map.node_id[i] < 0) continue;
-        const auto& x = model.model.nodes[i];
-        const auto& u = r.displacements[i];
-        std::snprintf(line, sizeof line, "%d,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g\n", map.node_id[i], x.x(), x.y(), x.z(), u(0),
-                      u(1), u(2));
-        csv << line;
-      }
-    }
+  return map;
+}
+
+// Node by node against CalculiX's .dat: where the two solvers part.
+void write_displacements_csv(const std::string& path, const sheetgen::PartModel& model, const sheetgen::ShellResult& r,
+                             const sheetgen::CcxDeckMap& map) {
+  std::ofstream csv(fs::u8path(path), std::ios::binary);
+  if (!csv) throw sheetgen::InputError(path, "--displacements", "cannot be written");
+  csv << "deck_node,x_m,y_m,z_m,ux_m,uy_m,uz_m\n";
+  char line[256];
+  for (size_t i = 0; i < r.displacements.size() && i < map.node_id.size(); ++i) {
+    if (map.node_id[i] < 0) continue;
+    const auto& x = model.model.nodes[i];
+    const auto& u = r.displacements[i];
+    std::snprintf(line, sizeof line, "%d,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g\n", map.node_id[i], x.x(), x.y(), x.z(), u(0),
+                  u(1), u(2));
+    csv << line;
   }
+}
+
+// --solve: the same model with our FEM, so both solvers see one mesh.
+void solve_ours(const sheetgen::Problem& problem, const sheetgen::PartModel& model, const sheetgen::CcxDeckMap& map,
+                const ExportCcxArgs& a) {
+  sheetgen::ShellElementOptions element;
+  element.transverse_shear = !a.kirchhoff;
+  const sheetgen::ShellSolveOptions solve_options = sheetgen::part_solve_options(problem, element);
+  const sheetgen::ShellResult r = sheetgen::solve_shell(model.model, solve_options);
+  std::printf("ours: h = %.4g mm, %zu triangles, %d DOF, compliance %.8g J, deflection %.8g mm\n",
+              model.mesh.element_size * 1e3, model.model.triangles.size(), r.reduced_dofs, r.compliance,
+              r.load_deflection * 1e3);
+  if (r.max_von_mises_element >= 0) {
+    const auto& tri = model.model.triangles[r.max_von_mises_element];
+    const sheetgen::Vec3 c = (model.model.nodes[tri[0]] + model.model.nodes[tri[1]] + model.model.nodes[tri[2]]) / 3.0;
+    std::printf("ours: max von Mises %.6g MPa (stress rule) at element centroid (%.2f, %.2f, %.2f) mm, MS %.4g\n",
+                r.max_von_mises * 1e-6, c.x() * 1e3, c.y() * 1e3, c.z() * 1e3, r.margin_of_safety);
+  }
+  if (!a.displacements.empty()) write_displacements_csv(a.displacements, model, r, map);
+}
+
+int export_ccx(const ExportCcxArgs& a) {
+  const nlohmann::json doc = read_result_json(a.result);
+  const sheetgen::Problem problem = problem_of(doc, a.result);
+  const int load_index = load_index_of(problem, a.load, a.result);
+  const nlohmann::json& part = part_of(doc, a.load, a.result);
+  const sheetgen::PlateGeometry geometry = sheetgen::plate_geometry_from_json(part.dump(), a.result);
+  sheetgen::PartModelOptions model_options;
+  model_options.element_size = a.element_size_mm * 1e-3;
+  model_options.self_rivets = sheetgen::self_rivet_ties_from_json(part.dump(), a.result);
+  const sheetgen::PartModel model = sheetgen::build_part_model(problem, load_index, geometry, model_options);
+  const sheetgen::CcxDeckMap map = write_deck(model, a);
+  if (a.solve) solve_ours(problem, model, map, a);
   return 0;
 }
 
@@ -289,55 +321,84 @@ int solve(const SolveArgs& a) {
   return result.all_ok() ? 0 : 2;
 }
 
+struct CheckArgs {
+  std::string problem;
+  bool env = false;     // also build the environment and print its queries
+  double voxel_mm = 0;  // mm, clearance field voxel; 0 = automatic
+};
+
+// `sheetgen check`: the problem's summary, with --env the environment's queries.
+int check(const CheckArgs& a) {
+  const sheetgen::Problem p = sheetgen::load_problem(a.problem);
+  print_summary(p);
+  if (a.env) {
+    sheetgen::EnvironmentOptions options;
+    options.voxel_size = a.voxel_mm * 1e-3;
+    print_queries(p, options);
+  }
+  std::printf("ok\n");
+  return 0;
+}
+
+CLI::App* add_check_command(CLI::App& app, CheckArgs& a) {
+  auto* check = app.add_subcommand("check", "validate a problem file and print a summary");
+  check->add_option("problem", a.problem, "problem JSON (sheetgen-problem/1)")->required();
+  check->add_flag("--env", a.env, "also build the environment (clearance field, rays) and print queries");
+  check->add_option("--voxel-mm", a.voxel_mm, "clearance field voxel size in mm (default: automatic)");
+  return check;
+}
+
+CLI::App* add_solve_command(CLI::App& app, SolveArgs& a) {
+  auto* solve_cmd = app.add_subcommand("solve", "design a part for every load of a problem");
+  solve_cmd->add_option("problem", a.problem, "problem JSON (sheetgen-problem/1)")->required();
+  solve_cmd->add_option("--out", a.out, "output folder")->required();
+  solve_cmd->add_option("--seed", a.seed, "random seed");
+  solve_cmd->add_option("--chains", a.chains, "MCMC chains (M)")->check(CLI::Range(1, 1024));
+  solve_cmd->add_option("--iterations", a.iterations, "iterations per chain (N)")->check(CLI::Range(1, 10000000));
+  solve_cmd->add_option("--beam", a.beam, "beam width of the composition (B)")->check(CLI::Range(1, 4096));
+  solve_cmd->add_option("--threads", a.threads, "worker threads (0 = all cores)")->check(CLI::Range(0, 1024));
+  solve_cmd->add_flag("--right-angles", a.right_angles,
+                      "restrict bends to +-90 degrees (plus flat extensions) and no skew (the expert's practice)");
+  solve_cmd->add_flag("--flat-extensions", a.flat_extensions,
+                      "let a tab continue its parent flat (0 degrees, no bend); on with --right-angles");
+  solve_cmd->add_flag("--no-self-rivet", a.no_self_rivet, "do not try self-riveting (for the ablation of paper Fig. 9)");
+  solve_cmd->add_flag("--no-lips", a.no_lips, "do not try stiffening lips on the free edges (the paper's method alone)");
+  solve_cmd->add_flag("--no-web-roots", a.no_web_roots,
+                      "do not search a load again with web roots when the first search finds no valid part");
+  solve_cmd->add_flag("--no-flat-fallback", a.no_flat_fallback,
+                      "do not search a load a third time with flat extensions when no search found a valid part");
+  return solve_cmd;
+}
+
+CLI::App* add_export_ccx_command(CLI::App& app, ExportCcxArgs& a) {
+  auto* ccx = app.add_subcommand("export-ccx", "write one load's part as a CalculiX input deck");
+  ccx->add_option("result", a.result, "result JSON (sheetgen-result/1)")->required();
+  ccx->add_option("--load", a.load, "load name")->required();
+  ccx->add_option("--out", a.out, "deck to write (.inp)")->required();
+  ccx->add_option("--element-size", a.element_size_mm, "element size in mm (default: the solver's, docs/fem.md)")
+      ->check(CLI::Range(0.05, 1000.0));
+  ccx->add_flag("--solve", a.solve, "also solve the model with sheetgen's FEM and print compliance and deflection");
+  ccx->add_option("--displacements", a.displacements,
+                  "with --solve: write our displacements by deck node id to this CSV (m), to compare with CalculiX's .dat");
+  ccx->add_option("--element-type", a.element_type,
+                  "CalculiX element: S4 (default) or S8R (quadratic; the accuracy reference, docs/fem.md)")
+      ->check(CLI::IsMember({"S4", "S8R"}));
+  ccx->add_flag("--kirchhoff", a.kirchhoff,
+                "with --solve: solve with DKT (no transverse shear) instead of the default DKMT, for studies");
+  return ccx;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
   CLI::App app{"sheetgen: generative design of sheet-metal brackets"};
   app.require_subcommand(1);
-
-  std::string check_path;
-  bool check_env = false;
-  double voxel_mm = 0;
-  auto* check = app.add_subcommand("check", "validate a problem file and print a summary");
-  check->add_option("problem", check_path, "problem JSON (sheetgen-problem/1)")->required();
-  check->add_flag("--env", check_env, "also build the environment (clearance field, rays) and print queries");
-  check->add_option("--voxel-mm", voxel_mm, "clearance field voxel size in mm (default: automatic)");
-
+  CheckArgs check_args;
   SolveArgs solve_args;
-  auto* solve_cmd = app.add_subcommand("solve", "design a part for every load of a problem");
-  solve_cmd->add_option("problem", solve_args.problem, "problem JSON (sheetgen-problem/1)")->required();
-  solve_cmd->add_option("--out", solve_args.out, "output folder")->required();
-  solve_cmd->add_option("--seed", solve_args.seed, "random seed");
-  solve_cmd->add_option("--chains", solve_args.chains, "MCMC chains (M)")->check(CLI::Range(1, 1024));
-  solve_cmd->add_option("--iterations", solve_args.iterations, "iterations per chain (N)")->check(CLI::Range(1, 10000000));
-  solve_cmd->add_option("--beam", solve_args.beam, "beam width of the composition (B)")->check(CLI::Range(1, 4096));
-  solve_cmd->add_option("--threads", solve_args.threads, "worker threads (0 = all cores)")->check(CLI::Range(0, 1024));
-  solve_cmd->add_flag("--right-angles", solve_args.right_angles,
-                      "restrict bends to +-90 degrees (plus flat extensions) and no skew (the expert's practice)");
-  solve_cmd->add_flag("--flat-extensions", solve_args.flat_extensions,
-                      "let a tab continue its parent flat (0 degrees, no bend); on with --right-angles");
-  solve_cmd->add_flag("--no-self-rivet", solve_args.no_self_rivet, "do not try self-riveting (for the ablation of paper Fig. 9)");
-  solve_cmd->add_flag("--no-lips", solve_args.no_lips, "do not try stiffening lips on the free edges (the paper's method alone)");
-  solve_cmd->add_flag("--no-web-roots", solve_args.no_web_roots,
-                      "do not search a load again with web roots when the first search finds no valid part");
-  solve_cmd->add_flag("--no-flat-fallback", solve_args.no_flat_fallback,
-                      "do not search a load a third time with flat extensions when no search found a valid part");
-
   ExportCcxArgs ccx_args;
-  auto* ccx = app.add_subcommand("export-ccx", "write one load's part as a CalculiX input deck");
-  ccx->add_option("result", ccx_args.result, "result JSON (sheetgen-result/1)")->required();
-  ccx->add_option("--load", ccx_args.load, "load name")->required();
-  ccx->add_option("--out", ccx_args.out, "deck to write (.inp)")->required();
-  ccx->add_option("--element-size", ccx_args.element_size_mm, "element size in mm (default: the solver's, docs/fem.md)")
-      ->check(CLI::Range(0.05, 1000.0));
-  ccx->add_flag("--solve", ccx_args.solve, "also solve the model with sheetgen's FEM and print compliance and deflection");
-  ccx->add_option("--displacements", ccx_args.displacements,
-                  "with --solve: write our displacements by deck node id to this CSV (m), to compare with CalculiX's .dat");
-  ccx->add_option("--element-type", ccx_args.element_type,
-                  "CalculiX element: S4 (default) or S8R (quadratic; the accuracy reference, docs/fem.md)")
-      ->check(CLI::IsMember({"S4", "S8R"}));
-  ccx->add_flag("--kirchhoff", ccx_args.kirchhoff,
-                "with --solve: solve with DKT (no transverse shear) instead of the default DKMT, for studies");
+  const CLI::App* check_cmd = add_check_command(app, check_args);
+  const CLI::App* solve_cmd = add_solve_command(app, solve_args);
+  const CLI::App* ccx_cmd = add_export_ccx_command(app, ccx_args);
 
   try {
     app.parse(argc, argv);
@@ -346,20 +407,9 @@ int main(int argc, char** argv) {
   }
 
   try {
-    if (*check) {
-      const sheetgen::Problem p = sheetgen::load_problem(check_path);
-      print_summary(p);
-      if (check_env) {
-        sheetgen::EnvironmentOptions options;
-        options.voxel_size = voxel_mm * 1e-3;
-        print_queries(p, options);
-      }
-      std::printf("ok\n");
-    } else if (*solve_cmd) {
-      return solve(solve_args);
-    } else if (*ccx) {
-      return export_ccx(ccx_args);
-    }
+    if (*check_cmd) return check(check_args);
+    if (*solve_cmd) return solve(solve_args);
+    if (*ccx_cmd) return export_ccx(ccx_args);
   } catch (const sheetgen::InputError& e) {
     std::fprintf(stderr, "sheetgen: %s\n", e.what());
     return 1;
