@@ -42,8 +42,8 @@ void check_input(const std::vector<Vec2>& points, const std::vector<int>& outlin
 
 // Insertion order: a snake over a coarse grid of the points' bounding box
 // (about 4 points a cell, alternate rows reversed), so that each point is
-// found by a short walk from the one before. CGAL's own spatial sort (Hilbert
-// order) gives the same walks but took 10 % of the mesher's time.
+// found by a short walk from the one before. CGAL's spatial sort (a Hilbert
+// order) does the same job but took 10 % of the mesher's time.
 std::vector<int> snake_order(const std::vector<Vec2>& points) {
   Vec2 lo = points[0], hi = points[0];
   for (const Vec2& p : points) {
