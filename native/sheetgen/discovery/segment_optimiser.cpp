@@ -294,7 +294,8 @@ ShortcutResult shortcut_segment(SegmentWork& work, const Environment& env, const
     double prefix = 0;  // lengths of the kept tabs before k - 1
     for (int i = work.first; i < k - 1; ++i) prefix += work.part.tabs[i].params.l;
     if (prefix >= best_length) break;
-    const std::vector<ReAim> options = candidate_reaims(cut, k, reaim_samples(cut, k, bends, skews, m), prefix, best_length, spec);
+    const ReAimSamples samples = reaim_samples(cut, k, bends, skews, m);
+    const std::vector<ReAim> options = candidate_reaims(cut, k, samples, prefix, best_length, spec);
     std::optional<Shortcut> s = first_acceptable(cut, k, options, best_length, acceptable, spec, o.max_checks);
     if (!s) continue;
     best = std::move(s->work);

@@ -473,8 +473,8 @@ struct SingularPoints {
 
 // Singular points: supported nodes, rigid-link nodes that carry elements, and
 // re-entrant corners of the boundary.
-SingularPoints singular_points(const ShellModel& m, const std::vector<int>& reentrant_corners, const std::vector<double>& node_size,
-                               const ShellSolveOptions& options) {
+SingularPoints singular_points(const ShellModel& m, const std::vector<int>& reentrant_corners,
+                               const std::vector<double>& node_size, const ShellSolveOptions& options) {
   const int n_nodes = static_cast<int>(m.nodes.size());
   std::vector<char> singular(n_nodes, 0);
   for (const NodeSupport& sp : m.supports) singular[sp.node] = 1;
@@ -506,7 +506,8 @@ struct CellKey {
 };
 
 // #E: true where the element's centroid lies within a singular point's radius.
-std::vector<bool> elements_near_singular_points(const ShellModel& m, const std::vector<Vec3>& centroid, const SingularPoints& sp) {
+std::vector<bool> elements_near_singular_points(const ShellModel& m, const std::vector<Vec3>& centroid,
+                                                const SingularPoints& sp) {
   const int n_elem = static_cast<int>(m.triangles.size());
   std::vector<bool> excluded(n_elem, false);
   if (sp.nodes.empty() || !(sp.rmax > 0)) return excluded;

@@ -112,7 +112,8 @@ std::optional<FaceUnder> face_under_flange(const FlangeProbe& p, const TriangleM
     u.smax = -u.smin;
     u.smin = lo;
   }
-  if (std::abs(u.smin) > p.near && std::abs(u.smax) > p.near && u.smin * u.smax > 0) return std::nullopt;  // a face far behind or in front
+  // a face far behind or in front
+  if (std::abs(u.smin) > p.near && std::abs(u.smax) > p.near && u.smin * u.smax > 0) return std::nullopt;
   u.cos_angle = std::abs(nf.dot(t.normal));
   return u;
 }
