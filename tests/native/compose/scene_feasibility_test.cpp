@@ -9,7 +9,7 @@
 #include <cmath>
 #include <string>
 
-#include "sheetgen/compose/composition.hpp"
+#include "sheetgen/compose/candidate.hpp"
 #include "sheetgen/compose/stiffening_lip.hpp"
 #include "sheetgen/discovery/feeler.hpp"
 #include "sheetgen/env/environment.hpp"

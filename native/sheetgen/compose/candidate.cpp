@@ -1,0 +1,73 @@
+#include "sheetgen/compose/candidate.hpp"
+
+#include <algorithm>
+#include <utility>
+
+#include "sheetgen/env/environment.hpp"
+#include "sheetgen/fem/fem_error.hpp"
+#include "sheetgen/part/manufacturing_plan.hpp"
+#include "sheetgen/part/realisation.hpp"
+
+namespace sheetgen {
+
+Candidate evaluate_part(const Problem& problem, const Environment& env, int load_index, Candidate c, double element_size,
+                        double bend_cost, ShellSolver* solver, double cost_bound) {
+  c.geometry_ok = false;
+  c.analysed = false;
+  c.over_cost_bound = false;
+  c.fem_error.clear();
+  c.reason = ValidityReason::Ok;
+  c.message.clear();
+  c.bends = c.part.bend_count();
+  const RealisedPart realised = realise(c.part);
+  ValidityOptions vo;
+  vo.stop_at_first = true;
+  const ValidityReport report = check_validity(c.part, realised, env, vo);
+  if (!report.valid()) {
+    c.reason = report.first_reason();
+    c.message = report.summary();
+    return c;
+  }
+  const SheetSpec spec = SheetSpec::from(problem);
+  const ManufacturingPlan plan = plan_manufacturing(c.part, spec);
+  c.area = plan.flat.area();
+  c.cost = c.area + bend_cost * c.bends;
+  if (!plan.ok()) {
+    c.reason = plan.status;
+    c.message = plan.message;
+    return c;
+  }
+  c.geometry_ok = true;
+  if (c.cost >= cost_bound) {
+    c.over_cost_bound = true;
+    return c;
+  }
+  analyse_candidate(problem, load_index, c, element_size, solver);
+  return c;
+}
+
+void analyse_candidate(const Problem& problem, int load_index, Candidate& c, double element_size, ShellSolver* solver) {
+  c.analysed = false;
+  c.fem_error.clear();
+  try {
+    PartModelOptions mo;
+    mo.element_size = element_size;
+    mo.self_rivets = c.self_rivets;
+    c.fem = analyse_part(problem, load_index, plate_geometry(c.part, realise(c.part)), mo, solver);
+    c.analysed = true;
+  } catch (const FemError& e) {
+    c.fem_error = e.what();
+  }
+}
+
+Candidate evaluate_candidate(const Problem& problem, const Environment& env, int load_index, const Part& base,
+                             const SegmentLibrary& library, std::vector<int> segments, double element_size,
+                             double bend_cost, ShellSolver* solver, double cost_bound) {
+  Candidate c;
+  std::sort(segments.begin(), segments.end());
+  c.segments = segments;
+  c.part = assemble_part(base, library, segments);
+  return evaluate_part(problem, env, load_index, std::move(c), element_size, bend_cost, solver, cost_bound);
+}
+
+}  // namespace sheetgen
