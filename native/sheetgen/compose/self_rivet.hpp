@@ -1,9 +1,9 @@
 #pragma once
-// Self-riveting (paper Sec. 5.2, Fig. 6 and 9; DESIGN.md "Composition"): two
-// free edges are *visible* to each other when their four endpoints lie in one
-// plane and their tabs do not. A gusset joins them: a tab from each edge bent
-// into that plane, long enough that the two overlap, riveted where they
-// overlap. The FEM ties the two sheets at the rivets.
+// Self-riveting (paper Sec. 5.2, Fig. 6 and 9; docs/architecture.md
+// "Composition"): two free edges are *visible* to each other when their four
+// endpoints lie in one plane and their tabs do not. A gusset joins them: a tab
+// from each edge bent into that plane, long enough that the two overlap,
+// riveted where they overlap. The FEM ties the two sheets at the rivets.
 #include <vector>
 
 #include "sheetgen/core/problem.hpp"
