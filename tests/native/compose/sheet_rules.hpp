@@ -1,7 +1,7 @@
 #pragma once
 // The manufacturing rules the compose tests build their hand-made parts to:
 // bend radius 4 t and the flange, tab and rivet sizes that follow from it
-// (the defaults of DESIGN.md, written out so the tests' geometry is explicit).
+// (the defaults of docs/architecture.md "Units and defaults", written out so the tests' geometry is explicit).
 #include "sheetgen/core/problem.hpp"
 
 namespace sheetgen::testing {
