@@ -33,6 +33,7 @@ class SolveOptions:
     chains: Optional[int] = None      # MCMC chains; None keeps the problem's search.chains
     iterations: Optional[int] = None  # iterations per chain; None keeps search.iterations
     seed: Optional[int] = None        # None keeps search.seed
+    beam: Optional[int] = None        # beam width of the composition; None keeps search.beam_width
     flags: tuple = ()                 # further `sheetgen solve` flags, e.g. ("--right-angles",)
     env: Optional[dict] = None        # variables added to the solver's environment
     log: Optional[str] = None         # a file that gets stdout and stderr as they come (to follow a long run)
@@ -72,7 +73,8 @@ class SolveRun:
 def command(problem, out_dir, options):
     """The `sheetgen solve` command line of a run."""
     cmd = [options.sheetgen, "solve", problem, "--out", out_dir, "--threads", str(options.threads)]
-    for flag, value in (("--chains", options.chains), ("--iterations", options.iterations), ("--seed", options.seed)):
+    for flag, value in (("--chains", options.chains), ("--iterations", options.iterations), ("--seed", options.seed),
+                        ("--beam", options.beam)):
         if value is not None:
             cmd += [flag, str(value)]
     return cmd + list(options.flags)
