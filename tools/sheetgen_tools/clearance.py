@@ -44,27 +44,30 @@ def _bend_roots(tabs, ti, ra):
 def _lower_to_triangles(d_min, rows, P, V, F):
     """Lowers d_min[rows] to the distances from the samples P[rows] to the
     triangles F (#F by 3 into V) wherever that can lower the tab's smallest
-    distance min(d_min). Triangles go nearest first by the distance between
-    their bounding box and the samples'; one farther than min(d_min) cannot
-    lower it and is left out. So min(d_min) and the sample it is at come out
-    as the brute force over every triangle gives them, in a fraction of the
-    time (the other samples may keep larger values, which nothing reads)."""
+    distance min(d_min). Per run of CHUNK samples (neighbours on the tab), the
+    triangles go nearest first by the distance between their bounding box and
+    the samples'; one farther than min(d_min) cannot lower it and is left out.
+    So min(d_min) and the sample it is at come out as the brute force over
+    every triangle gives them, in a fraction of the time (the other samples
+    may keep larger values, which nothing reads)."""
     if not len(F) or not len(rows):
         return
-    Q = P[rows]
     T = V[F]
-    gap = np.maximum(0.0, np.maximum(T.min(axis=1) - Q.max(axis=0), Q.min(axis=0) - T.max(axis=1)))
-    lower_bound = np.linalg.norm(gap, axis=1)
-    order = np.argsort(lower_bound, kind="stable")
-    for k in range(0, len(order), CHUNK):
-        batch = order[k:k + CHUNK]
-        batch = batch[lower_bound[batch] <= d_min.min()]
-        if not len(batch):
-            break  # sorted: every later triangle is farther still
-        A, B, C = V[F[batch, 0]], V[F[batch, 1]], V[F[batch, 2]]
-        for j in range(0, len(rows), CHUNK):
-            r = rows[j:j + CHUNK]
-            d_min[r] = np.minimum(d_min[r], point_triangle_distance(P[r], A, B, C).min(axis=1))
+    t_lo, t_hi = T.min(axis=1), T.max(axis=1)
+    for j in range(0, len(rows), CHUNK):
+        r = rows[j:j + CHUNK]
+        Q = P[r]
+        gap = np.maximum(0.0, np.maximum(t_lo - Q.max(axis=0), Q.min(axis=0) - t_hi))
+        lower_bound = np.linalg.norm(gap, axis=1)
+        near = np.nonzero(lower_bound <= d_min.min())[0]
+        near = near[np.argsort(lower_bound[near], kind="stable")]
+        for k in range(0, len(near), CHUNK):
+            batch = near[k:k + CHUNK]
+            batch = batch[lower_bound[batch] <= d_min.min()]
+            if not len(batch):
+                break  # sorted: every later triangle is farther still
+            A, B, C = V[F[batch, 0]], V[F[batch, 1]], V[F[batch, 2]]
+            d_min[r] = np.minimum(d_min[r], point_triangle_distance(Q, A, B, C).min(axis=1))
 
 
 def _lower_to_mesh(d_min, P, tabs, ti, name, V, F, s):
