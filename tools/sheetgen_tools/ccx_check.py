@@ -4,7 +4,7 @@
   (solid_reference.py: the tabs as t-thick plates fused and meshed in C3D10 by
   gmsh, with the supports, box link, loads and material of the S4 deck
   `sheetgen export-ccx` writes): within CCX_TOLERANCE of result.json, and within
-  the limit (+ the same tolerance). CCX_TOLERANCE is 5 % (issue 6). The solid
+  the limit (+ the same tolerance). CCX_TOLERANCE is 5 %, the check's acceptance bound. The solid
   and not CalculiX's shells: the shell decks are meshed from our own triangles,
   and their 20-node expansion (S8R) is 3-10 % softer than the solid on parts
   whose load passes a fold end, where ours is within 3 % of it (docs/fem.md

@@ -1,4 +1,4 @@
-"""Writes the scene library in sample_scenes/ (problem JSON + OBJ meshes), issue 8.
+"""Writes the scene library in sample_scenes/ (problem JSON + OBJ meshes).
 
     PYTHONPATH=tools python3 -m sheetgen_tools.scenes [SCENE ...] [--out DIR]
 

@@ -1,5 +1,5 @@
 """Checks the parts of a `sheetgen solve` output folder with tools independent of
-the code that made them (issue 6 acceptance):
+the code that made them:
 
 * clearance (clearance.py): every tab sampled every 1.5 mm, brute-force
   point-triangle distance to every environment triangle and load box, except
