@@ -8,7 +8,6 @@
 #include "sheetgen/part/exports.hpp"
 #include "sheetgen/pipeline/result_json.hpp"
 #include "sheetgen/report/convergence_plot.hpp"
-#include "sheetgen/report/png_writer.hpp"
 
 namespace sheetgen {
 
@@ -37,7 +36,7 @@ void write_convergence_plot(const std::string& path, const Problem& problem, con
   for (const Load& l : problem.loads)
     if (l.name == o.load) h.compliance_limit_J = problem.requirements.compliance_limit(l.force.norm());
   h.min_margin_of_safety = problem.requirements.min_margin_of_safety;
-  write_png_file(path, draw_convergence_plot(h).image);
+  write_convergence_png(h, ConvergenceOptions{}, path);
 }
 
 // One load's folder: the drawings and model of a valid part, the history and its plot.
