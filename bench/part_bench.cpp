@@ -26,7 +26,7 @@ TriangleMesh rectangle(double x0, double x1, double y0, double y1, double z) {
 }
 
 // Scene: a 120 x 120 x 40 mm load whose base tab is at z = 0, a floor 200 mm
-// below, a wall at x = 300 mm. Defaults of DESIGN.md for t = 1.6 mm.
+// below, a wall at x = 300 mm. Defaults of docs/architecture.md for t = 1.6 mm.
 Problem scene() {
   Problem p;
   p.source = "<bench>";

@@ -13,7 +13,7 @@
 #   --enable           enable the add-on in Blender's preferences and save them
 #                      (with BLENDER_USER_SCRIPTS=DIR when --scripts-dir is not the default)
 # A module must be built for the Python of the Blender that loads it: Debian's Blender 3.4
-# runs the system Python 3.11; blender.org builds of 3.4 ship Python 3.10 (see NOTES.md).
+# runs the system Python 3.11; blender.org builds of 3.4 ship Python 3.10 (see docs/platform.md).
 set -euo pipefail
 ROOT="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 BUILD_DIR="$ROOT/build"

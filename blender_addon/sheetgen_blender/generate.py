@@ -1,6 +1,6 @@
 """Generate: the scene's problem -> native ``generate()`` -> a run collection with the parts.
 
-Two paths over one ``Run`` (NOTES.md "Blender 3.4 facts"):
+Two paths over one ``Run`` (docs/platform.md "Blender 3.4 facts"):
 
 - ``invoke()`` (the button in the UI): the problem is built and parsed on the
   main thread, ``generate`` runs in a worker thread (the native code releases

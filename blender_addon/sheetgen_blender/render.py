@@ -14,7 +14,7 @@ settings stay as they were.
   (the ``sheetgen_rivet_color`` attribute), part metallic, rivet markers red,
   load boxes translucent blue (2 mm inset, camera rays only), candidates of
   loads without a valid part (``CANDIDATE_KEY``) translucent magenta;
-- sun + a grey world, Cycles on the CPU without denoising (NOTES.md: this build
+- sun + a grey world, Cycles on the CPU without denoising (docs/platform.md: this build
   has no OpenImageDenoise), 640 x 400, few samples;
 - the flat pattern: matplotlib from the stored result.json (core.flatplot).
 """

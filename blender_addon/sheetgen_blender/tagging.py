@@ -2,7 +2,7 @@
 
 The tag is an INT face attribute ``sheetgen_rivet_area`` (0 = none, k = the
 object's rivet area with ``area_id`` k). Blender 3.4 BMesh has no bool face
-layer, and in edit mode ``mesh.attributes`` has no data (NOTES.md), so every
+layer, and in edit mode ``mesh.attributes`` has no data (docs/platform.md), so every
 read and write goes through BMesh: the edit BMesh in edit mode, a temporary one
 in object mode. A BYTE_COLOR corner attribute ``sheetgen_rivet_color`` mirrors
 the tags for the viewport (Solid shading, colour "Attribute"): it shows in

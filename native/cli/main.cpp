@@ -1,4 +1,4 @@
-// sheetgen command line: batch runs without Blender (DESIGN.md "Interfaces").
+// sheetgen command line: batch runs without Blender (docs/architecture.md "Interfaces").
 #include <CLI/CLI.hpp>
 
 #include <chrono>

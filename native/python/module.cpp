@@ -1,4 +1,4 @@
-// The native module: thin bindings only (STYLE.md point 8). One bind_x() per area.
+// The native module: thin bindings only (docs/code-style.md point 8). One bind_x() per area.
 #include <pybind11/pybind11.h>
 
 namespace py = pybind11;

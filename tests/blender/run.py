@@ -2,7 +2,7 @@
 
 blender -b --factory-startup --python-exit-code 1 --python tests/blender/run.py -- BUILD_DIR
 Exits non-zero (through --python-exit-code) when any test fails: pytest is not
-importable in Blender's Python here (NOTES.md).
+importable in Blender's Python here (docs/platform.md).
 """
 import os
 import sys

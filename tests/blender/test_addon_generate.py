@@ -1,7 +1,7 @@
 """Generate in Blender: the operator's execute(), the results in the scene, cancel, errors, the batch command.
 
 Small searches (chains 6, iterations 300) on sample_scenes/corner: about 10 s each here.
-(4 x 300 found no valid part for seed 1 after the exact tab clearance of session 12.)
+(4 x 300 finds no valid part for seed 1 with the exact tab clearance.)
 """
 import json
 import os

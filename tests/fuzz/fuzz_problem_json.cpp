@@ -1,5 +1,5 @@
 // libFuzzer target: the problem reader, parse_problem(), on arbitrary bytes.
-// Contract (docs/problem-format.md, STYLE.md 7): any input either loads or
+// Contract (docs/problem-format.md, docs/code-style.md point 7): any input either loads or
 // throws sheetgen::InputError whose message is one line naming the file; no
 // other exception, no crash, no hang, no memory blow-up. Mesh files named by
 // the problem are looked up in mesh_dir/ (wall.obj, tri.ply, box_le.ply, box_be.ply).

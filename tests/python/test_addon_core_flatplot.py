@@ -4,7 +4,7 @@ Run: /usr/bin/python3 -m unittest discover -s tests/python -p 'test_addon_core_*
 
 A 120 x 80 mm plate with a leg and its flange folded off one side: two parallel
 bend lines 16 mm apart, whose labels printed over each other before the plot
-placed them clear of one another (the right-angle bay's battery, session 8).
+placed them clear of one another (the right-angle bay's battery).
 """
 import itertools
 import os

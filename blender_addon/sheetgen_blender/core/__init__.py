@@ -1,4 +1,4 @@
-"""The bpy-free core of the sheetgen add-on (STYLE.md point 9).
+"""The bpy-free core of the sheetgen add-on (docs/code-style.md point 9).
 
 Everything here is plain Python (no ``bpy``, no numpy) and is tested outside
 Blender by ``tests/python/test_addon_core_*.py``:

@@ -1,7 +1,7 @@
 """The scene as plain data: what the bpy layer reads from Blender and builds into it.
 
 Units are SI (m, N, N*m, Pa, kg/m^3), as in docs/problem-format.md; shapes are
-given as "#V by 3". Defaults are the ones of docs/problem-format.md (DESIGN.md
+given as "#V by 3". Defaults are the ones of docs/problem-format.md (docs/architecture.md
 "Units and defaults"); a test checks them against that table.
 """
 from dataclasses import dataclass, field

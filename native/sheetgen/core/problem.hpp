@@ -43,7 +43,7 @@ struct Load {
   std::array<Vec3, 4> bottom_face() const;
 };
 
-struct Material {  // Al 2024-T3 sheet by default (DESIGN.md "Units and defaults")
+struct Material {  // Al 2024-T3 sheet by default (docs/architecture.md "Units and defaults")
   double youngs_modulus = 73.1e9;  // Pa
   double poisson_ratio = 0.33;     // -
   double density = 2780.0;         // kg/m^3

@@ -1,5 +1,5 @@
 #pragma once
-// Segment discovery (paper Sec. 4, DESIGN.md "Discovery"): M communicating
+// Segment discovery (paper Sec. 4, docs/architecture.md "Discovery"): M communicating
 // reversible-jump Metropolis-Hastings chains grow feelers from their parts;
 // every connection to a rivet area is optimised (contraction, merging,
 // widening) and offered to the Segment Library. Deterministic: the same

@@ -1,5 +1,5 @@
 #pragma once
-// The Segment Library (paper Sec. 4, DESIGN.md "Segment library"): optimised
+// The Segment Library (paper Sec. 4, docs/architecture.md "Segment library"): optimised
 // segments from the base tab (or from an earlier segment) to a rivet area,
 // kept as a tree, with the admission / replacement rule and the assembly of a
 // Part from a subset of segments closed under parents (what composition needs).

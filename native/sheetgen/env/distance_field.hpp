@@ -1,6 +1,6 @@
 #pragma once
 // Unsigned distance to a triangle mesh, O(1) per query. The one door to OpenVDB
-// (STYLE.md point 5): a narrow-band distance grid plus a closest-triangle index
+// (docs/code-style.md point 5): a narrow-band distance grid plus a closest-triangle index
 // grid. See docs/environment.md for the accuracy contract.
 #include <atomic>
 #include <memory>

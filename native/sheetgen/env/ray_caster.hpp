@@ -1,6 +1,6 @@
 #pragma once
 // Exact ray casts and closest-point queries against a set of triangle meshes.
-// The one door to Embree (STYLE.md point 5). Embree works in single precision:
+// The one door to Embree (docs/code-style.md point 5). Embree works in single precision:
 // hits are exact to about 1e-7 of the scene size.
 #include <memory>
 #include <optional>

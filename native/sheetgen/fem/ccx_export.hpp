@@ -3,7 +3,7 @@
 // displacements, and a runner - for engineers who verify elsewhere
 // (`sheetgen export-ccx`) and for the validation tests (docs/fem.md "CalculiX").
 //
-// CalculiX's S3 locks (-21 % on the cantilever strip, NOTES.md), so each
+// CalculiX's S3 locks (-21 % on the cantilever strip, docs/platform.md), so each
 // triangle becomes three quadrilaterals (corner, edge midpoint, centroid, edge
 // midpoint); midpoints are shared by the two triangles of an edge, so the quad
 // mesh is conforming. Elements are S4 (full integration, incompatible modes).

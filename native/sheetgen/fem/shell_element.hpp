@@ -1,6 +1,6 @@
 #pragma once
 // A linear-elastic flat-shell triangle with 6 DOF per node, the element of the
-// bracket FEM (DESIGN.md "FEM", docs/fem.md).
+// bracket FEM (docs/architecture.md "FEM", docs/fem.md).
 //
 //   membrane: Felippa's ANDES "optimal" triangle OPT with corner drilling
 //             rotations (C. A. Felippa, "A study of optimal membrane triangles

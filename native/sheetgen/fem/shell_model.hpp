@@ -1,5 +1,5 @@
 #pragma once
-// The bracket FEM model and its linear static solve (DESIGN.md "FEM",
+// The bracket FEM model and its linear static solve (docs/architecture.md "FEM",
 // docs/fem.md): flat-shell triangles (shell_element.hpp) on one conforming
 // mesh, supports, rigid links eliminated master-slave (u = T u_hat), nodal
 // loads; outputs compliance, load deflection, fibre von Mises stresses and the
@@ -75,7 +75,7 @@ struct ShellModel {
 // CHOLMOD's BLAS-bound supernodal LL^T at 5k-20k DOF (docs/fem.md
 // "Benchmarks"). With OpenBLAS CHOLMOD factors faster, but the composition on
 // it was not reproducible from run to run, while on the reference BLAS both
-// backends give the same part (docs/benchmarks.md "Session 15").
+// backends give the same part (docs/fem.md "Benchmarks").
 enum class ShellSolverBackend {
   kEigenSimplicialLdlt,  // default
   kCholmodSupernodal,
@@ -84,7 +84,7 @@ enum class ShellSolverBackend {
 struct ShellSolveOptions {
   ShellElementOptions element;
   ShellSolverBackend backend = ShellSolverBackend::kEigenSimplicialLdlt;
-  double safety_factor = 1.5;  // -, SF in MS = Fty / (SF sigma_max) - 1 (DESIGN.md "Units")
+  double safety_factor = 1.5;  // -, SF in MS = Fty / (SF sigma_max) - 1 (docs/architecture.md "Units and defaults")
   // Stress rule: an element is left out of the maximum when its centroid is
   // closer than (stress_exclusion_thicknesses * t + h_p) to a singular point p
   // (a node with a support, a node of a rigid link, or a re-entrant corner of

@@ -1,5 +1,5 @@
 #pragma once
-// Bend sequence (DESIGN.md "Manufacturing plan", paper Sec. 3.1 C_M): starting
+// Bend sequence (docs/architecture.md "Manufacturing plan", paper Sec. 3.1 C_M): starting
 // from the flat sheet, bends are made one at a time, each swept from 0 to its
 // angle. Every sampled intermediate state of the sharp mid-surface model must
 // keep non-adjacent tabs t + gap apart. Only the part's own collisions are

@@ -1,5 +1,5 @@
 #pragma once
-// Exports of the manufacturing plan (DESIGN.md "Manufacturing plan",
+// Exports of the manufacturing plan (docs/architecture.md "Manufacturing plan",
 // docs/manufacturing.md): DXF R12 in millimetres for the laser, SVG of the same,
 // bend table CSV, bent mid-surface OBJ (metres), part JSON (the tabs[] of
 // sheetgen-result/1) and flat-pattern JSON. All writers return text; callers

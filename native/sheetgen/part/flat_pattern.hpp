@@ -1,5 +1,5 @@
 #pragma once
-// Flat pattern (DESIGN.md "Manufacturing plan"; docs/manufacturing.md has the
+// Flat pattern (docs/architecture.md "Manufacturing plan"; docs/manufacturing.md has the
 // figures). Every tab is unfolded about its sharp bend line into its parent's
 // plane and then moved away from the parent, perpendicular to the bend line, by
 // the bend length change dL = BA - 2 SB (BA = |theta| (R + K t),
@@ -49,7 +49,7 @@ struct FlatPiece {
 };
 
 struct FlatPatternOptions {
-  double relief_width = 0;     // m, 0 = t (the narrowest slot DESIGN.md allows)
+  double relief_width = 0;     // m, 0 = t (the narrowest slot, docs/manufacturing.md "Reliefs")
   double corner_tolerance = 1e-7;  // m, a bend ending this close to its parent edge's end needs no relief
 };
 

@@ -1,5 +1,5 @@
 #pragma once
-// One call for the end of the pipeline (DESIGN.md "Manufacturing plan"): flat
+// One call for the end of the pipeline (docs/architecture.md "Manufacturing plan"): flat
 // pattern + reliefs, flat overlap check with the kerf, bend sequence; and the
 // per-load files of the CLI contract (flat.dxf, flat.svg, bends.csv, part.obj).
 #include <string>

@@ -1,5 +1,5 @@
 #pragma once
-// The tab grammar (DESIGN.md "Grammar", paper Sec. 3.2): a part is a tree of
+// The tab grammar (docs/architecture.md "Grammar", paper Sec. 3.2): a part is a tree of
 // tabs. tabs[0] is the base tab (a convex polygon under the load); every other
 // tab is a planar trapezoid leaving a free edge of its parent, described by six
 // numbers (d, w, l, theta1, theta2, theta3). docs/grammar.md has the figure and

@@ -1,5 +1,5 @@
 #pragma once
-// Validity of a realised part (DESIGN.md "Manufacturing plan", paper Sec. 3.1
+// Validity of a realised part (docs/architecture.md "Manufacturing plan", paper Sec. 3.1
 // C_E and C_M): tab limits, bend-zone room, self-intersection, obstacle
 // clearance and rivet-flange attachment. Every failure names a reason, the tab(s)
 // and a one-sentence message. Flat-pattern and bend-order failures use the same

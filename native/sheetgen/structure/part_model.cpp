@@ -203,7 +203,7 @@ void tie_self_rivets(PartModel& pm, const PlateGeometry& geometry, const std::ve
   }
 }
 
-// The load box: rigid, bonded to the base-tab nodes under it (DESIGN.md).
+// The load box: rigid, bonded to the base-tab nodes under it (docs/architecture.md "FEM").
 void bond_load_box(PartModel& pm, const Load& load, double t) {
   ShellModel& m = pm.model;
   const auto bottom = load.bottom_face();

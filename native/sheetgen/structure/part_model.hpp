@@ -1,5 +1,5 @@
 #pragma once
-// A part's structural model (DESIGN.md "FEM"): its tabs meshed as one
+// A part's structural model (docs/architecture.md "FEM"): its tabs meshed as one
 // conforming shell, rivet flanges clamped at their rivets, the load box rigid
 // and bonded to the base tab (master node at the box centroid carrying the
 // force and moment), self-rivets as rigid ties. Also the one-call analysis the

@@ -1,6 +1,6 @@
 #pragma once
 // The sheet most native tests use: Al 2024-T3, t = 1.6 mm, clearance 1 mm,
-// with DESIGN.md's defaults for that thickness written out (R = 4t, min flange
+// with the defaults of docs/architecture.md for that thickness written out (R = 4t, min flange
 // 4t + R, w_min = 10t, l_min = 2R + 2t, 5/32 in rivets at 2D edge distance and
 // 6D pitch), so a test's closed-form numbers do not move with the defaults.
 #include "sheetgen/part/part.hpp"

@@ -6,7 +6,7 @@
 
 namespace sheetgen::testing_scenes {
 
-inline Manufacturing manufacturing() { return fixtures::aluminium_manufacturing_1_6mm(); }  // DESIGN.md defaults for t = 1.6 mm
+inline Manufacturing manufacturing() { return fixtures::aluminium_manufacturing_1_6mm(); }  // docs/architecture.md defaults for t = 1.6 mm
 
 // Rectangle from corner o spanned by u and v (normal u x v), two triangles.
 inline TriangleMesh quad(const Vec3& o, const Vec3& u, const Vec3& v) {

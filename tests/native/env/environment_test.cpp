@@ -40,7 +40,7 @@ std::vector<Vec3> square(const Vec3& c, double half, double z) {
 }
 
 // Obstacles added to a built environment (the parts of earlier loads,
-// docs/environment.md "More obstacles"): the environment built from the scene
+// docs/environment.md "Obstacles added later"): the environment built from the scene
 // plus one small field over the added meshes answers like one built from
 // scratch over all of them, and both keep the field's accuracy contract
 // against brute force.

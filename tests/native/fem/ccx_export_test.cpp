@@ -1,5 +1,5 @@
 // Our shell FEM against real CalculiX (ccx, S4 shells on the exported deck).
-// ccx is a required tool of this project (NOTES.md): if it is missing these
+// ccx is a required tool of this project (docs/platform.md): if it is missing these
 // tests FAIL, they never skip.
 #include "sheetgen/fem/ccx_export.hpp"
 
@@ -89,7 +89,7 @@ TEST(CcxExport, ReadsDatDisplacements) {
 
 TEST(CcxExport, LBracketAgreesWithCalculix) {
   // Also checks the deck itself: with 1 N, C = the load-weighted u_x of the
-  // top edge, so ccx must reproduce NOTES.md's 0.108231 mm as 1.08231e-4 J.
+  // top edge, so ccx must reproduce docs/fem.md "Reference values": 0.108231 mm as 1.08231e-4 J.
   // CalculiX's S4 on the split quads approaches it from below as h^2
   // (-4.6 %, -1.2 %, -0.28 % at h = 5, 2.5, 1.25 mm) once the clamped edge is
   // clamped along its whole length; so the finest mesh is the check.

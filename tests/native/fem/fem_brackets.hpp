@@ -1,6 +1,6 @@
 #pragma once
 // Bracket models shared by the CalculiX comparison test and bench/fem_bench.cpp:
-// the L-bracket of NOTES.md and a three-tab bracket (a base plate under a
+// the L-bracket of docs/fem.md "Reference values" and a three-tab bracket (a base plate under a
 // rigid load box, a leg bent down from it, a rivet flange bent out from the
 // leg and clamped at its rivet points), both meshed by the plate mesher.
 #include <vector>
@@ -12,7 +12,7 @@
 namespace sheetgen::test {
 
 inline Material bracket_material(double nu) {
-  Material m;  // Al 2024-T3 1.6 mm (DESIGN.md) with the given nu
+  Material m;  // Al 2024-T3 1.6 mm (docs/architecture.md "FEM") with the given nu
   m.youngs_modulus = 73.1e9;
   m.poisson_ratio = nu;
   m.thickness = 1.6e-3;

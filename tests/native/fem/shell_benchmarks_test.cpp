@@ -1,4 +1,4 @@
-// Closed-form and standard shell benchmarks (NOTES.md "Shell FEM reference
+// Closed-form and standard shell benchmarks (docs/fem.md "Reference
 // values"). Each test prints the value it measured so docs/fem.md can quote it.
 #include <gtest/gtest.h>
 
@@ -115,7 +115,7 @@ TEST(ShellBenchmarks, CantileverSurfaceStressAtMidSpan) {
 TEST(ShellBenchmarks, LBracketTipDisplacement) {
   // Leg 1 in z = 0, x in [0, 50] mm, clamped at x = 0; fold at x = 50 into
   // leg 2 in x = 50, z in [0, 30]; width 20, t = 1.6, nu = 0; 1 N along x on
-  // the top edge. Reference u_x = 0.108231 mm (CalculiX S4, NOTES.md; beam
+  // the top edge. Reference u_x = 0.108231 mm (CalculiX S4, docs/fem.md "Reference values"; beam
   // theory gives P h^3/3EI + P h^2 a/EI + P a/EA = 0.10823 mm).
   ShellModel m;
   m.material = material(73.1e9, 0.0, 1.6e-3);

@@ -22,7 +22,7 @@ Material test_material(double nu = 0.3) {
 
 // Eigenvalues of a free element: exactly six rigid-body modes (3 translations,
 // 3 rotations) are zero; the other 12 are strictly positive. A coplanar patch
-// without drilling stiffness would show a seventh zero (NOTES.md).
+// without drilling stiffness would show a seventh zero (docs/fem.md "Reference values").
 void expect_six_rigid_modes(const std::array<Vec3, 3>& x, double nu) {
   const Matrix18d K = shell_element_stiffness(x, test_material(nu));
   EXPECT_LT((K - K.transpose()).norm(), 1e-9 * K.norm());

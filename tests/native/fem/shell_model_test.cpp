@@ -220,7 +220,7 @@ ShellModel clamped_pair(const std::vector<Vec3>& clamped, const std::vector<Vec3
   return m;
 }
 
-// L-bracket of NOTES.md through the plate mesher at element size h.
+// L-bracket of docs/fem.md "Reference values" through the plate mesher at element size h.
 ShellResult mesh_l_bracket(double h, ShellSolver& solver, ShellModel* out = nullptr) {
   const std::vector<Vec3> leg1 = {Vec3(0, 0, 0), Vec3(0.05, 0, 0), Vec3(0.05, 0.02, 0), Vec3(0, 0.02, 0)};
   const std::vector<Vec3> leg2 = {Vec3(0.05, 0, 0), Vec3(0.05, 0, 0.03), Vec3(0.05, 0.02, 0.03), Vec3(0.05, 0.02, 0)};
