@@ -42,10 +42,9 @@ def shoelace(points):
     return 0.5 * sum(x0 * y1 - x1 * y0 for (x0, y0), (x1, y1) in zip(points, points[1:] + points[:1]))
 
 
-def check_dxf(path, expected):
-    """Returns a list of failure messages (empty = pass)."""
+def _check_tables(doc):
+    """R12, millimetres, the four layers and the DASHED linetype."""
     bad = []
-    doc = ezdxf.readfile(path)
     if doc.dxfversion != "AC1009":
         bad.append(f"DXF version {doc.dxfversion}, want AC1009 (R12)")
     if doc.header.get("$INSUNITS") != 4:
@@ -60,8 +59,12 @@ def check_dxf(path, expected):
         pattern = doc.linetypes.get("DASHED").dxf
         if not getattr(pattern, "description", None):
             bad.append("DASHED has no description")
+    return bad
 
-    msp = doc.modelspace()
+
+def _check_outline(msp, expected):
+    """One closed POLYLINE on CUT with the plan's vertices and area: (failures, the outline or None)."""
+    bad = []
     cut = [e for e in msp if e.dxf.layer == "CUT"]
     outlines = [e for e in cut if e.dxftype() == "POLYLINE"]
     if len(outlines) != 1 or len(cut) != 1:
@@ -78,7 +81,12 @@ def check_dxf(path, expected):
             bad.append(f"outline area {area:.6f} mm^2, want {expected['area_mm2']:.6f}")
         if min(x for x, _ in pts) < -1e-9 or min(y for _, y in pts) < -1e-9:
             bad.append("outline has negative coordinates (drawings start at 0,0)")
+    return bad, outlines[0] if len(outlines) == 1 else None
 
+
+def _check_bend_lines(doc, msp, want):
+    """DASHED LINEs on BEND_UP / BEND_DOWN of the plan's lengths: (failures, {layer: lengths mm})."""
+    bad = []
     lines = {"BEND_UP": [], "BEND_DOWN": []}
     for e in msp:
         if e.dxf.layer in lines:
@@ -88,13 +96,18 @@ def check_dxf(path, expected):
             if e.dxf.linetype != "DASHED" and doc.layers.get(e.dxf.layer).dxf.linetype != "DASHED":
                 bad.append(f"bend line on {e.dxf.layer} is not DASHED")
             lines[e.dxf.layer].append(math.dist(e.dxf.start, e.dxf.end))
-    want = expected["bends"]
     for layer, direction in (("BEND_UP", "UP"), ("BEND_DOWN", "DOWN")):
         got = sorted(round(x, 6) for x in lines[layer])
         ref = sorted(round(b["length_mm"], 6) for b in want if b["direction"] == direction)
         if got != ref:
             bad.append(f"{layer}: bend line lengths {got} mm, want {ref}")
+    return bad, lines
 
+
+def _check_annotations(msp, expected, n_lines):
+    """TEXT only on ANNOTATION: one bend label per bend line matching the plan, and the self-rivet notes."""
+    bad = []
+    want = expected["bends"]
     texts = [e for e in msp if e.dxftype() == "TEXT"]
     stray = [e.dxf.layer for e in texts if e.dxf.layer != "ANNOTATION"]
     if stray:
@@ -114,7 +127,6 @@ def check_dxf(path, expected):
         labels.append((int(m.group(1)), m.group(2), float(m.group(3))))
     if sorted(notes) != sorted(expected.get("notes", [])):
         bad.append(f"self-rivet notes {sorted(notes)}, want {sorted(expected.get('notes', []))}")
-    bad += check_holes(msp, outlines[0] if len(outlines) == 1 else None, expected.get("holes", []))
     numbers = sorted(n for n, _, _ in labels)
     if numbers != list(range(1, len(want) + 1)):
         bad.append(f"bend numbers {numbers}, want 1..{len(want)}")
@@ -125,8 +137,21 @@ def check_dxf(path, expected):
             continue
         if direction != ref["direction"] or abs(angle - ref["angle_deg"]) > 5e-4:
             bad.append(f"B{n}: annotated {direction} {angle}, plan says {ref['direction']} {ref['angle_deg']:.4f}")
-    if len(labels) != len(lines["BEND_UP"]) + len(lines["BEND_DOWN"]):
-        bad.append(f"{len(labels)} bend labels for {len(lines['BEND_UP']) + len(lines['BEND_DOWN'])} bend lines")
+    if len(labels) != n_lines:
+        bad.append(f"{len(labels)} bend labels for {n_lines} bend lines")
+    return bad
+
+
+def check_dxf(path, expected):
+    """Returns a list of failure messages (empty = pass)."""
+    doc = ezdxf.readfile(path)
+    msp = doc.modelspace()
+    bad = _check_tables(doc)
+    outline_bad, outline = _check_outline(msp, expected)
+    lines_bad, lines = _check_bend_lines(doc, msp, expected["bends"])
+    bad += outline_bad + lines_bad
+    bad += _check_annotations(msp, expected, len(lines["BEND_UP"]) + len(lines["BEND_DOWN"]))
+    bad += check_holes(msp, outline, expected.get("holes", []))
     return bad
 
 
