@@ -17,7 +17,7 @@ PACKAGES=(
   python3-dev pybind11-dev python3-numpy
   # runtime, reference and check tools
   blender calculix-ccx python3-ezdxf python3-shapely python3-matplotlib python3-pil
-  # the solid reference model of tests/python/solid_reference.py (OpenCASCADE + mesher)
+  # the solid reference model of tools/sheetgen_tools/solid_reference.py (OpenCASCADE + mesher)
   python3-gmsh
   # screenshots of the Blender UI (scripts/make_screenshots.py)
   xvfb
