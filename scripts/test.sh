@@ -31,7 +31,9 @@ stage() { echo "== $1 (at $((SECONDS - start)) s)"; }
 
 bash "$ROOT/scripts/install_deps.sh"
 stage "build ($BUILD_DIR)"
-BUILD_DIR="$BUILD_DIR" bash "$ROOT/scripts/build.sh"
+# The benchmarks are built by the full tier only: no fast test runs them.
+if [ "$FULL" = 1 ]; then BENCH=ON; else BENCH=OFF; fi
+BUILD_DIR="$BUILD_DIR" bash "$ROOT/scripts/build.sh" -DSHEETGEN_BENCH="$BENCH"
 mkdir -p "$LOGS"
 rm -f "$LOGS"/*.log
 
@@ -60,7 +62,9 @@ if [ "$FULL" = 1 ]; then
 else
   # The search areas (discovery, structure, compose) take over 20 minutes under
   # ASan; the fast tier runs the areas below them, which every search builds on.
-  SANITIZE_TARGETS="sheetgen sheetgen_core_tests sheetgen_env_tests sheetgen_part_tests sheetgen_fem_tests" \
+  # The CLI those tests drive is the Release one (it needs every search area).
+  SANITIZE_TARGETS="sheetgen_core_tests sheetgen_env_tests sheetgen_part_tests sheetgen_fem_tests" \
+  SHEETGEN_CLI="$BUILD_DIR/native/cli/sheetgen" \
     bash "$ROOT/scripts/sanitize.sh" -L "core|env|part|fem" -LE full </dev/null 2>&1 | tee "$LOGS/sanitize.log"
 fi
 if [ "${PIPESTATUS[0]}" -ne 0 ]; then status=1; fi

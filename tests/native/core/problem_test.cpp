@@ -12,6 +12,7 @@
 #include <sys/wait.h>
 
 #include "sheetgen/core/input_error.hpp"
+#include "../common/cli_path.hpp"
 
 namespace sheetgen {
 namespace {
@@ -53,7 +54,7 @@ struct Files {
 
 // Runs the real CLI; returns exit code and the first line of stderr.
 std::pair<int, std::string> run_check(const std::string& path) {
-  const std::string cmd = std::string(SHEETGEN_BINARY_DIR) + "/native/cli/sheetgen check '" + path + "' 2>&1 >/dev/null";
+  const std::string cmd = sheetgen::testing::sheetgen_cli() + " check '" + path + "' 2>&1 >/dev/null";
   FILE* pipe = popen(cmd.c_str(), "r");
   std::string out;
   char buf[4096];

@@ -22,6 +22,7 @@
 #include <sstream>
 #include <string>
 #include <vector>
+#include "../common/cli_path.hpp"
 
 extern char** environ;
 
@@ -66,9 +67,9 @@ struct CliRun {
   double seconds = 0;    // wall clock
 };
 
-// Runs SHEETGEN_BINARY_DIR/native/cli/sheetgen with `args` (no shell).
+// Runs the sheetgen CLI (common/cli_path.hpp) with `args` (no shell).
 inline CliRun run_sheetgen(const std::vector<std::string>& args, const fs::path& scratch) {
-  const std::string exe = std::string(SHEETGEN_BINARY_DIR) + "/native/cli/sheetgen";
+  const std::string exe = sheetgen::testing::sheetgen_cli();
   std::vector<std::string> all{exe};
   all.insert(all.end(), args.begin(), args.end());
   std::vector<char*> argv;

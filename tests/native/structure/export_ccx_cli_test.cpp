@@ -14,6 +14,7 @@
 #include "sheetgen/fem/ccx_export.hpp"
 #include "sheetgen/part/exports.hpp"
 #include "sheetgen/structure/part_model.hpp"
+#include "../common/cli_path.hpp"
 
 namespace sheetgen {
 namespace {
@@ -21,7 +22,7 @@ namespace {
 namespace fs = std::filesystem;
 
 std::pair<int, std::string> run(const std::string& args) {
-  const std::string cmd = std::string(SHEETGEN_BINARY_DIR) + "/native/cli/sheetgen " + args + " 2>&1";
+  const std::string cmd = sheetgen::testing::sheetgen_cli() + " " + args + " 2>&1";
   FILE* pipe = popen(cmd.c_str(), "r");
   std::string out;
   char buf[4096];
