@@ -10,7 +10,7 @@ PACKAGES=(
   libopenvdb-dev libboost-iostreams-dev libtbb-dev libblosc-dev zlib1g-dev
   libembree-dev libeigen3-dev libsuitesparse-dev nlohmann-json3-dev libcli11-dev
   # exact geometric predicates of the plate mesher (header-only CGAL), the convergence plot (cairo)
-  libcgal-dev libgmp-dev libmpfr-dev libcairo2-dev
+  libcgal-dev libgmp-dev libmpfr-dev libcairo2-dev libspectra-dev
   # tests and benchmarks
   libgtest-dev libgmock-dev libbenchmark-dev
   # python module (built for the system Python 3.11 that Debian's Blender runs)

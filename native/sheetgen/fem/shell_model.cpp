@@ -1,8 +1,6 @@
 #include "sheetgen/fem/shell_model.hpp"
 
-#include <Eigen/CholmodSupport>
-#include <Eigen/SparseCholesky>
-#include <Eigen/SparseCore>
+#include <Eigen/Eigenvalues>
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -12,10 +10,9 @@
 #include <unordered_map>
 
 #include "sheetgen/fem/fem_error.hpp"
+#include "sheetgen/fem/shell_solver_impl.hpp"
 
 namespace sheetgen {
-
-using SparseMatrix = Eigen::SparseMatrix<double, Eigen::ColMajor, int>;
 
 // ---------------------------------------------------------------- ShellModel
 
@@ -32,6 +29,11 @@ void ShellModel::clamp(int node) {
 
 void ShellModel::add_load(int node, const Vec3& force, const Vec3& moment) {
   loads.push_back(NodalLoad{node, force, moment});
+}
+
+std::vector<ShellLoadCase> ShellModel::cases() const {
+  if (!load_cases.empty()) return load_cases;
+  return {ShellLoadCase{"design", loads}};
 }
 
 void ShellModel::add_surface_traction(const Vec3& traction, const std::vector<int>& elements) {
@@ -142,17 +144,53 @@ void check_rigid_links(const ShellModel& m, NodeUse& use) {
                      "is itself a slave of another link (chained links are not supported; merge them)");
 }
 
-void check_loads(const ShellModel& m, const NodeUse& use) {
-  for (size_t i = 0; i < m.loads.size(); ++i) {
-    const NodalLoad& f = m.loads[i];
-    check_node(m, f.node, "loads[" + std::to_string(i) + "]");
-    if (!f.force.allFinite() || !f.moment.allFinite())
-      throw FemError("loads[" + std::to_string(i) + "]", "force or moment is not finite");
+void check_nodal_loads(const ShellModel& m, const NodeUse& use, const std::vector<NodalLoad>& loads,
+                       const std::string& where) {
+  for (size_t i = 0; i < loads.size(); ++i) {
+    const NodalLoad& f = loads[i];
+    const std::string field = where + "[" + std::to_string(i) + "]";
+    check_node(m, f.node, field);
+    if (!f.force.allFinite() || !f.moment.allFinite()) throw FemError(field, "force or moment is not finite");
     if (!use.in_element[f.node] && !use.in_link[f.node])
-      throw FemError("loads[" + std::to_string(i) + "]",
-                     "acts on node " + std::to_string(f.node) + ", which no element or rigid link uses");
+      throw FemError(field, "acts on node " + std::to_string(f.node) + ", which no element or rigid link uses");
+  }
+}
+
+// Every named case must load the model: a case without load has no stress
+// state to buckle from and a zero deflection that would pass any check.
+void check_loads(const ShellModel& m, const NodeUse& use) {
+  check_nodal_loads(m, use, m.loads, "loads");
+  for (size_t c = 0; c < m.load_cases.size(); ++c) {
+    const ShellLoadCase& lc = m.load_cases[c];
+    const std::string field = "load_cases[" + std::to_string(c) + "] '" + lc.name + "'";
+    check_nodal_loads(m, use, lc.loads, field + ".loads");
+    const bool loaded = std::any_of(lc.loads.begin(), lc.loads.end(), [](const NodalLoad& f) {
+      return f.force.squaredNorm() > 0 || f.moment.squaredNorm() > 0;
+    });
+    if (!loaded) throw FemError(field, "has no non-zero force or moment");
   }
   if (m.load_node >= 0) check_node(m, m.load_node, "load_node");
+}
+
+// A point mass must be a positive, finite mass with a symmetric positive
+// semi-definite inertia on a node the model uses.
+void check_point_masses(const ShellModel& m, const NodeUse& use) {
+  for (size_t i = 0; i < m.point_masses.size(); ++i) {
+    const PointMass& p = m.point_masses[i];
+    const std::string field = "point_masses[" + std::to_string(i) + "]";
+    check_node(m, p.node, field);
+    if (!use.in_element[p.node] && !use.in_link[p.node])
+      throw FemError(field, "sits on node " + std::to_string(p.node) + ", which no element or rigid link uses");
+    if (!std::isfinite(p.mass) || !(p.mass > 0))
+      throw FemError(field + ".mass", "must be a finite number > 0 kg (got " + str(p.mass) + ")");
+    if (!p.offset.allFinite() || !p.inertia.allFinite())
+      throw FemError(field, "offset or inertia is not finite");
+    const double scale = std::max(p.inertia.cwiseAbs().maxCoeff(), 1e-300);
+    if ((p.inertia - p.inertia.transpose()).cwiseAbs().maxCoeff() > 1e-9 * scale)
+      throw FemError(field + ".inertia", "is not symmetric");
+    if (Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d>(p.inertia).eigenvalues().minCoeff() < -1e-12 * scale)
+      throw FemError(field + ".inertia", "has a negative principal moment");
+  }
 }
 
 // Every connected patch (elements joined through shared nodes and rigid
@@ -191,6 +229,7 @@ void validate_shell_model(const ShellModel& m) {
   check_supports(m, use);
   check_rigid_links(m, use);
   check_loads(m, use);
+  check_point_masses(m, use);
   check_every_patch_supported(m, use);
 }
 
@@ -200,75 +239,6 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 double seconds_since(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
-
-// Full DOF (6 per node) -> linear combination of reduced DOFs: u = T u_hat.
-struct DofMap {
-  std::vector<int> start;  // 6 #N + 1, CSR offsets into index/coef
-  std::vector<int> index;  // reduced DOF
-  std::vector<double> coef;
-  int reduced = 0;
-};
-
-DofMap build_dof_map(const ShellModel& m) {
-  const int n = static_cast<int>(m.nodes.size());
-  std::vector<std::array<bool, 6>> fixed(n, std::array<bool, 6>{});
-  for (const NodeSupport& s : m.supports)
-    for (int d = 0; d < 6; ++d) fixed[s.node][d] = fixed[s.node][d] || s.fixed[d];
-  std::vector<char> active(n, 0);
-  for (const auto& t : m.triangles)
-    for (int k : t) active[k] = 1;
-  std::vector<int> slave_link(n, -1);
-  for (size_t l = 0; l < m.rigid_links.size(); ++l) {
-    active[m.rigid_links[l].master] = 1;
-    for (int s : m.rigid_links[l].slaves) slave_link[s] = static_cast<int>(l);
-  }
-  DofMap map;
-  std::vector<int> red(6 * static_cast<size_t>(n), -1);
-  for (int i = 0; i < n; ++i) {
-    if (!active[i] || slave_link[i] >= 0) continue;
-    for (int d = 0; d < 6; ++d)
-      if (!fixed[i][d]) red[6 * i + d] = map.reduced++;
-  }
-  map.start.assign(6 * static_cast<size_t>(n) + 1, 0);
-  map.index.reserve(6 * static_cast<size_t>(n));
-  map.coef.reserve(6 * static_cast<size_t>(n));
-  auto push = [&](int r, double c) {
-    if (r >= 0 && c != 0.0) {
-      map.index.push_back(r);
-      map.coef.push_back(c);
-    }
-  };
-  for (int i = 0; i < n; ++i) {
-    const int l = slave_link[i];
-    for (int d = 0; d < 6; ++d) {
-      if (l < 0) {
-        push(red[6 * i + d], 1.0);
-      } else {
-        const int mi = m.rigid_links[l].master;
-        const Vec3 r = m.nodes[i] - m.nodes[mi];
-        const int* rm = &red[6 * mi];
-        push(rm[d], 1.0);  // u_s = u_m + theta_m x r; theta_s = theta_m
-        if (d == 0) { push(rm[4], r.z()); push(rm[5], -r.y()); }
-        if (d == 1) { push(rm[5], r.x()); push(rm[3], -r.z()); }
-        if (d == 2) { push(rm[3], r.y()); push(rm[4], -r.x()); }
-      }
-      map.start[6 * i + d + 1] = static_cast<int>(map.index.size());
-    }
-  }
-  return map;
-}
-
-std::uint64_t pattern_hash(const SparseMatrix& K) {
-  std::uint64_t h = 1469598103934665603ull;  // FNV-1a over the index arrays
-  auto mix = [&h](std::uint64_t v) {
-    h ^= v;
-    h *= 1099511628211ull;
-  };
-  mix(static_cast<std::uint64_t>(K.rows()));
-  for (Eigen::Index j = 0; j <= K.cols(); ++j) mix(static_cast<std::uint64_t>(K.outerIndexPtr()[j]));
-  for (Eigen::Index k = 0; k < K.nonZeros(); ++k) mix(static_cast<std::uint64_t>(K.innerIndexPtr()[k]));
-  return h;
-}
 
 // Boundary nodes whose incident triangles' angles at the node add up to more
 // than `min_angle` (rad): re-entrant corners of the shell's outline. Where a
@@ -309,118 +279,12 @@ std::vector<int> find_reentrant_corners(const ShellModel& m, double min_angle) {
   return corners;
 }
 
-// Gives access to the CHOLMOD factor so the pivots can be checked for a
-// mechanism (CHOLMOD only fails on non-positive pivots, not on tiny ones).
-class CholmodLlt : public Eigen::CholmodSupernodalLLT<SparseMatrix, Eigen::Lower> {
- public:
-  // Smallest L_jj^2 / K_jj over all columns (1 for a perfectly diagonal K).
-  double min_pivot_ratio(const Eigen::VectorXd& diag) const {
-    const cholmod_factor* L = this->m_cholmodFactor;
-    if (!L || !L->is_super) return 1.0;
-    const int* sup = static_cast<const int*>(L->super);
-    const int* pi = static_cast<const int*>(L->pi);
-    const int* px = static_cast<const int*>(L->px);
-    const int* perm = static_cast<const int*>(L->Perm);
-    const double* x = static_cast<const double*>(L->x);
-    double worst = std::numeric_limits<double>::infinity();
-    for (size_t s = 0; s < L->nsuper; ++s) {
-      const int k1 = sup[s], k2 = sup[s + 1];
-      const int nsrow = pi[s + 1] - pi[s];
-      for (int j = k1; j < k2; ++j) {
-        const double ljj = x[px[s] + (j - k1) + static_cast<size_t>(j - k1) * nsrow];
-        const double kjj = diag(perm ? perm[j] : j);
-        worst = std::min(worst, kjj > 0 ? ljj * ljj / kjj : 0.0);
-      }
-    }
-    return worst;
-  }
-};
-
-using EigenLdlt = Eigen::SimplicialLDLT<SparseMatrix, Eigen::Lower, Eigen::AMDOrdering<int>>;
-
-// Smallest D_jj / K_jj over all columns, in the factor's (permuted) order.
-double min_pivot_ratio(const EigenLdlt& ldlt, const Eigen::VectorXd& diag) {
-  const int N = static_cast<int>(diag.size());
-  const Eigen::VectorXd& D = ldlt.vectorD();
-  const auto& P = ldlt.permutationP().indices();
-  Eigen::VectorXd pdiag(N);
-  for (int i = 0; i < N; ++i) pdiag(P(i)) = diag(i);
-  double pivot_ratio = std::numeric_limits<double>::infinity();
-  for (int j = 0; j < N; ++j) pivot_ratio = std::min(pivot_ratio, pdiag(j) > 0 ? D(j) / pdiag(j) : 0.0);
-  return pivot_ratio;
-}
-
-// Adds T_e^T Ke T_e of one element to the lower triangle of K_hat.
-void add_element_triplets(std::vector<Eigen::Triplet<double, int>>& triplets, const DofMap& map, const std::array<int, 3>& t,
-                          const Matrix18d& Ke) {
-  int beg[18], end[18];
-  for (int a = 0; a < 18; ++a) {
-    const int full = 6 * t[a / 6] + a % 6;
-    beg[a] = map.start[full];
-    end[a] = map.start[full + 1];
-  }
-  for (int a = 0; a < 18; ++a)
-    for (int pa = beg[a]; pa < end[a]; ++pa) {
-      const int ia = map.index[pa];
-      const double ca = map.coef[pa];
-      for (int b = 0; b < 18; ++b)
-        for (int pb = beg[b]; pb < end[b]; ++pb) {
-          const int ib = map.index[pb];
-          if (ib > ia) continue;  // lower triangle only
-          triplets.emplace_back(ia, ib, ca * map.coef[pb] * Ke(a, b));
-        }
-    }
-}
-
-// K_hat = T^T K T, lower triangle.
-SparseMatrix assemble_stiffness(const ShellModel& m, const DofMap& map, const ShellElementOptions& element) {
-  const int n_elem = static_cast<int>(m.triangles.size());
-  std::vector<Eigen::Triplet<double, int>> triplets;
-  triplets.reserve(static_cast<size_t>(n_elem) * 171);  // 18*19/2 per element
-  for (int e = 0; e < n_elem; ++e) {
-    const auto& t = m.triangles[e];
-    const Matrix18d Ke = shell_element_stiffness({m.nodes[t[0]], m.nodes[t[1]], m.nodes[t[2]]}, m.material, element);
-    add_element_triplets(triplets, map, t, Ke);
-  }
-  SparseMatrix K(map.reduced, map.reduced);
-  K.setFromTriplets(triplets.begin(), triplets.end());
-  return K;
-}
-
-// f_hat = T^T f.
-Eigen::VectorXd assemble_load(const ShellModel& m, const DofMap& map) {
-  const int n_nodes = static_cast<int>(m.nodes.size());
-  Eigen::VectorXd f = Eigen::VectorXd::Zero(map.reduced);
-  std::vector<Vector6d> f_full(n_nodes, Vector6d::Zero());
-  for (const NodalLoad& load : m.loads) {
-    f_full[load.node].head<3>() += load.force;
-    f_full[load.node].tail<3>() += load.moment;
-  }
-  for (int i = 0; i < n_nodes; ++i)
-    for (int d = 0; d < 6; ++d)
-      for (int p = map.start[6 * i + d]; p < map.start[6 * i + d + 1]; ++p)
-        f(map.index[p]) += map.coef[p] * f_full[i](d);
-  return f;
-}
-
-// u = T u_hat.
-std::vector<Vector6d> expand_displacements(const DofMap& map, const Eigen::VectorXd& uh, int n_nodes) {
-  std::vector<Vector6d> u(n_nodes, Vector6d::Zero());
-  for (int i = 0; i < n_nodes; ++i)
-    for (int d = 0; d < 6; ++d) {
-      double v = 0;
-      for (int p = map.start[6 * i + d]; p < map.start[6 * i + d + 1]; ++p) v += map.coef[p] * uh(map.index[p]);
-      u[i](d) = v;
-    }
-  return u;
-}
-
 // The model's load node, else the loaded node that moves most (-1 without loads).
-int deflection_node(const ShellModel& m, const std::vector<Vector6d>& u) {
+int deflection_node(const ShellModel& m, const std::vector<NodalLoad>& loads, const std::vector<Vector6d>& u) {
   if (m.load_node >= 0) return m.load_node;
   int node = -1;
   double best = -1;
-  for (const NodalLoad& load : m.loads) {
+  for (const NodalLoad& load : loads) {
     const double d = u[load.node].head<3>().norm();
     if (d > best) {
       best = d;
@@ -564,92 +428,91 @@ void apply_stress_rule(const ShellModel& m, const ShellSolveOptions& options, Sh
                              : std::numeric_limits<double>::infinity();
 }
 
-}  // namespace
 
-struct ShellSolver::Impl {
-  std::uint64_t hash = 0;
-  ShellSolverBackend backend = ShellSolverBackend::kEigenSimplicialLdlt;
-  bool analysed = false;
-  int analyses = 0;
-  CholmodLlt cholmod;
-  EigenLdlt ldlt;
-
-  // Factorises K, reusing the symbolic analysis while the pattern repeats
-  // (returns whether it did); throws on a singular K.
-  bool factorise(const SparseMatrix& K, ShellSolverBackend use, double singular_pivot_ratio) {
-    const std::uint64_t h = pattern_hash(K);
-    const bool reuse = analysed && hash == h && backend == use;
-    const Eigen::VectorXd diag = K.diagonal();
-    double pivot_ratio = 1.0;
-    bool ok = true;
-    if (use == ShellSolverBackend::kCholmodSupernodal) {
-      if (!reuse) cholmod.analyzePattern(K);
-      cholmod.factorize(K);
-      ok = cholmod.info() == Eigen::Success;
-      if (ok) pivot_ratio = cholmod.min_pivot_ratio(diag);
-    } else {
-      if (!reuse) ldlt.analyzePattern(K);
-      ldlt.factorize(K);
-      ok = ldlt.info() == Eigen::Success;
-      if (ok) pivot_ratio = min_pivot_ratio(ldlt, diag);
-    }
-    analysed = true;
-    hash = h;
-    backend = use;
-    if (!reuse) ++analyses;
-    if (!ok || !(pivot_ratio > singular_pivot_ratio)) {
-      analysed = false;  // a failed factor leaves the solver in an unknown state
-      throw FemError("stiffness", "the stiffness matrix is singular (smallest pivot ratio " + str(pivot_ratio) +
-                                      "): the supports leave a rigid-body mode or a mechanism free");
-    }
-    return reuse;
-  }
-
-  Eigen::VectorXd solve(const Eigen::VectorXd& f, ShellSolverBackend use) {
-    return use == ShellSolverBackend::kCholmodSupernodal ? Eigen::VectorXd(cholmod.solve(f)) : Eigen::VectorXd(ldlt.solve(f));
-  }
-};
-
-ShellSolver::ShellSolver() : impl_(std::make_unique<Impl>()) {}
-ShellSolver::~ShellSolver() = default;
-ShellSolver::ShellSolver(ShellSolver&&) noexcept = default;
-ShellSolver& ShellSolver::operator=(ShellSolver&&) noexcept = default;
-int ShellSolver::symbolic_analyses() const { return impl_->analyses; }
-
-ShellResult ShellSolver::solve(const ShellModel& m, const ShellSolveOptions& options) {
-  validate_shell_model(m);
+// The static answer of one case from its reduced load and displacement vectors.
+ShellResult finish_case(const ShellModel& m, const DofMap& map, const ShellLoadCase& lc, const Eigen::VectorXd& f,
+                        const Eigen::VectorXd& uh, const ShellSolveOptions& options) {
   ShellResult res;
-
-  auto t0 = Clock::now();
-  const DofMap map = build_dof_map(m);
+  res.case_name = lc.name;
   res.reduced_dofs = map.reduced;
-  if (map.reduced == 0) throw FemError("supports", "every DOF is fixed; there is nothing to solve");
-  const SparseMatrix K = assemble_stiffness(m, map, options.element);
-  const Eigen::VectorXd f = assemble_load(m, map);
-  res.assemble_seconds = seconds_since(t0);
-
-  t0 = Clock::now();
-  res.pattern_reused = impl_->factorise(K, options.backend, options.singular_pivot_ratio);
-  res.factor_seconds = seconds_since(t0);
-
-  t0 = Clock::now();
-  const Eigen::VectorXd uh = impl_->solve(f, options.backend);
   if (!uh.allFinite()) throw FemError("solution", "the solve produced non-finite displacements");
   res.displacements = expand_displacements(map, uh, static_cast<int>(m.nodes.size()));
   res.compliance = f.dot(uh);
-  res.load_node = deflection_node(m, res.displacements);
-  if (res.load_node >= 0) res.load_deflection = res.displacements[res.load_node].head<3>().norm();
-  res.solve_seconds = seconds_since(t0);
-
-  t0 = Clock::now();
+  res.load_node = deflection_node(m, lc.loads, res.displacements);
+  if (res.load_node >= 0) {
+    const Vec3 u = res.displacements[res.load_node].head<3>();
+    res.load_deflection = u.norm();
+    Vec3 force = Vec3::Zero();
+    for (const NodalLoad& load : lc.loads) force += load.force;
+    if (force.norm() > 0) res.deflection_along_load = u.dot(force.normalized());
+  }
+  const auto t0 = Clock::now();
   apply_stress_rule(m, options, res);
   res.stress_seconds = seconds_since(t0);
   return res;
 }
 
+}  // namespace
+
+ShellSolver::ShellSolver() : impl_(std::make_unique<Impl>()) {}
+ShellSolver::~ShellSolver() = default;
+ShellSolver::ShellSolver(ShellSolver&&) noexcept = default;
+ShellSolver& ShellSolver::operator=(ShellSolver&&) noexcept = default;
+int ShellSolver::symbolic_analyses() const { return impl_->factor.symbolic_analyses(); }
+
+void ShellSolver::Impl::prepare(const ShellModel& m, const ShellSolveOptions& options, ShellResult& timing) {
+  auto t0 = Clock::now();
+  map = build_dof_map(m);
+  if (map.reduced == 0) throw FemError("supports", "every DOF is fixed; there is nothing to solve");
+  stiffness = assemble_stiffness(m, map, options.element);
+  timing.assemble_seconds = seconds_since(t0);
+  t0 = Clock::now();
+  timing.pattern_reused = factor.factorise(stiffness, options.backend, options.singular_pivot_ratio).pattern_reused;
+  timing.factor_seconds = seconds_since(t0);
+}
+
+std::vector<ShellResult> ShellSolver::Impl::solve(const ShellModel& m, const std::vector<ShellLoadCase>& cases,
+                                                  const ShellSolveOptions& options) {
+  ShellResult timing;
+  prepare(m, options, timing);
+  auto t0 = Clock::now();
+  const int n_nodes = static_cast<int>(m.nodes.size());
+  Eigen::MatrixXd F(map.reduced, static_cast<Eigen::Index>(cases.size()));
+  for (size_t c = 0; c < cases.size(); ++c) F.col(c) = assemble_load(cases[c].loads, map, n_nodes);
+  timing.assemble_seconds += seconds_since(t0);
+  t0 = Clock::now();
+  const Eigen::MatrixXd U = factor.solve(F);  // one factorisation, every case
+  const double solve_seconds = seconds_since(t0);
+  std::vector<ShellResult> results;
+  for (size_t c = 0; c < cases.size(); ++c) {
+    ShellResult res = finish_case(m, map, cases[c], F.col(c), U.col(c), options);
+    res.pattern_reused = timing.pattern_reused;
+    res.assemble_seconds = timing.assemble_seconds;
+    res.factor_seconds = timing.factor_seconds;
+    res.solve_seconds = solve_seconds;
+    results.push_back(std::move(res));
+  }
+  return results;
+}
+
+ShellResult ShellSolver::solve(const ShellModel& m, const ShellSolveOptions& options) {
+  validate_shell_model(m);
+  return impl_->solve(m, {ShellLoadCase{"design", m.loads}}, options).front();
+}
+
+std::vector<ShellResult> ShellSolver::solve_cases(const ShellModel& m, const ShellSolveOptions& options) {
+  validate_shell_model(m);
+  return impl_->solve(m, m.cases(), options);
+}
+
 ShellResult solve_shell(const ShellModel& model, const ShellSolveOptions& options) {
   ShellSolver solver;
   return solver.solve(model, options);
+}
+
+std::vector<ShellResult> solve_shell_cases(const ShellModel& model, const ShellSolveOptions& options) {
+  ShellSolver solver;
+  return solver.solve_cases(model, options);
 }
 
 }  // namespace sheetgen

@@ -15,6 +15,7 @@
 #include <cstdint>
 #include <functional>
 #include <memory>
+#include <string>
 #include <vector>
 
 #include "sheetgen/core/problem.hpp"
@@ -49,13 +50,34 @@ struct NodalLoad {
   Vec3 moment = Vec3::Zero();  // N m, world frame
 };
 
+// One load case: its own nodal loads on the common model. Every case of a
+// model is solved on one factorisation (ShellSolver::solve_cases).
+struct ShellLoadCase {
+  std::string name;
+  std::vector<NodalLoad> loads;
+};
+
+// A rigid body's inertia lumped at a node (the load box on its master node):
+// mass at the centre of mass `node + offset`, inertia tensor about that centre.
+// Enters the mass matrix of the frequency analysis only.
+struct PointMass {
+  int node = -1;
+  double mass = 0;                                    // kg, > 0
+  Vec3 offset = Vec3::Zero();                         // m, centre of mass - node position (world)
+  Eigen::Matrix3d inertia = Eigen::Matrix3d::Zero();  // kg m^2, about the centre of mass, world frame
+};
+
 struct ShellModel {
   std::vector<Vec3> nodes;                     // #N, m
   std::vector<std::array<int, 3>> triangles;   // #E by 3 node indices; the vertex order sets the "top" side
   Material material;                           // E, nu, thickness, Fty are used
   std::vector<NodeSupport> supports;
   std::vector<RigidLink> rigid_links;
-  std::vector<NodalLoad> loads;
+  std::vector<NodalLoad> loads;                // the single case of solve()
+  // The load cases of solve_cases() and of the CalculiX deck's static steps;
+  // empty: `loads` is the one case, named "design" (see cases()).
+  std::vector<ShellLoadCase> load_cases;
+  std::vector<PointMass> point_masses;         // rigid masses of the frequency analysis
   // The node whose translation is reported as the load deflection (the load
   // box master); -1: the loaded node with the largest translation.
   int load_node = -1;
@@ -67,6 +89,8 @@ struct ShellModel {
   // (all when empty) to their nodes, a third of each element's share per node.
   // Exact for the resultant; the consistent and lumped vectors differ only in
   // rotations, which DKT/OPT do not load under a constant traction.
+  // load_cases, or `loads` as one case named "design" when there are none.
+  std::vector<ShellLoadCase> cases() const;
   void add_surface_traction(const Vec3& traction, const std::vector<int>& elements = {});
 };
 
@@ -112,9 +136,13 @@ struct ShellSolveOptions {
 };
 
 struct ShellResult {
+  std::string case_name;                 // the load case ("design" for solve())
   std::vector<Vector6d> displacements;   // #N, (ux, uy, uz m; rx, ry, rz rad), world frame
   double compliance = 0;                 // J, f^T u
   double load_deflection = 0;            // m, |translation| of the load node
+  // m, the load node's translation along the case's resultant force, u . F/|F|
+  // (0 when the case has only moments).
+  double deflection_along_load = 0;
   int load_node = -1;                    // the node used for load_deflection
   std::vector<double> von_mises_top;     // #E, Pa, centroid, z = +t/2
   std::vector<double> von_mises_bottom;  // #E, Pa, centroid, z = -t/2
@@ -140,16 +168,24 @@ class ShellSolver {
 
   // Throws FemError on bad input or a singular (mechanism) model.
   ShellResult solve(const ShellModel& model, const ShellSolveOptions& options = {});
+  // Every case of model.cases() on one factorisation (one result per case, in
+  // order). Same errors, and a case without any load is one.
+  std::vector<ShellResult> solve_cases(const ShellModel& model, const ShellSolveOptions& options = {});
+
+  // The state the fem area's eigen analyses share with the static solve
+  // (buckling.hpp, vibration.hpp); opaque elsewhere.
+  struct Impl;
+  Impl& state() { return *impl_; }
 
   int symbolic_analyses() const;  // how many times the pattern was analysed
 
  private:
-  struct Impl;
   std::unique_ptr<Impl> impl_;
 };
 
-// One-off solve (analyses the pattern every time).
+// One-off solves (analyse the pattern every time).
 ShellResult solve_shell(const ShellModel& model, const ShellSolveOptions& options = {});
+std::vector<ShellResult> solve_shell_cases(const ShellModel& model, const ShellSolveOptions& options = {});
 
 // Checks the model without solving; throws FemError naming the first problem.
 void validate_shell_model(const ShellModel& model);

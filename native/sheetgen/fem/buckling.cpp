@@ -1,0 +1,83 @@
+#include "sheetgen/fem/buckling.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+
+#include "sheetgen/fem/fem_error.hpp"
+#include "sheetgen/fem/geometric_stiffness.hpp"
+#include "sheetgen/fem/pencil_modes.hpp"
+#include "sheetgen/fem/shell_solver_impl.hpp"
+
+namespace sheetgen {
+namespace {
+
+// Per element, the membrane stress resultants (Nxx, Nyy, Nxy), N/m, local frame.
+std::vector<Eigen::Vector3d> membrane_resultants(const ShellModel& m, const ShellResult& ref,
+                                                 const ShellElementOptions& element) {
+  std::vector<Eigen::Vector3d> N(m.triangles.size());
+  for (size_t e = 0; e < m.triangles.size(); ++e) {
+    const auto& t = m.triangles[e];
+    Vector18d ue;
+    for (int k = 0; k < 3; ++k) ue.segment<6>(6 * k) = ref.displacements[t[k]];
+    const ShellStress st = shell_element_stress({m.nodes[t[0]], m.nodes[t[1]], m.nodes[t[2]]}, m.material, ue, element);
+    N[e] = st.membrane * m.material.thickness;
+  }
+  return N;
+}
+
+// Smaller and larger principal value of (Nxx, Nyy, Nxy).
+std::pair<double, double> principal(const Eigen::Vector3d& n) {
+  const double c = 0.5 * (n(0) + n(1));
+  const double r = std::hypot(0.5 * (n(0) - n(1)), n(2));
+  return {c - r, c + r};
+}
+
+bool in_compression(const std::vector<Eigen::Vector3d>& N, double threshold) {
+  double largest = 0, most_compressive = 0;
+  for (const auto& n : N) {
+    const auto [lo, hi] = principal(n);
+    largest = std::max({largest, std::abs(lo), std::abs(hi)});
+    most_compressive = std::min(most_compressive, lo);
+  }
+  return largest > 0 && most_compressive < -threshold * largest;
+}
+
+}  // namespace
+
+BucklingResult analyse_buckling(ShellSolver& solver, const ShellModel& m, const ShellResult& ref,
+                                const ShellSolveOptions& solve_options, const BucklingOptions& options) {
+  validate_shell_model(m);
+  if (ref.displacements.size() != m.nodes.size())
+    throw FemError("buckling reference", "holds " + std::to_string(ref.displacements.size()) +
+                                             " nodal displacements for a model of " + std::to_string(m.nodes.size()) +
+                                             " nodes (not a static result of this model)");
+  const auto t0 = std::chrono::steady_clock::now();
+  BucklingResult res;
+  res.case_name = ref.case_name;
+  const std::vector<Eigen::Vector3d> N = membrane_resultants(m, ref, solve_options.element);
+  res.compressed = in_compression(N, options.compression_threshold);
+  if (res.compressed) {
+    ShellSolveOptions ldlt = solve_options;
+    ldlt.backend = ShellSolverBackend::kEigenSimplicialLdlt;
+    ShellSolver::Impl& st = solver.state();
+    ShellResult timing;
+    st.prepare(m, ldlt, timing);
+    const SparseMatrix B = assemble_elements(m, st.map, [&](int e) {
+      const auto& t = m.triangles[e];
+      return Matrix18d(-shell_geometric_stiffness({m.nodes[t[0]], m.nodes[t[1]], m.nodes[t[2]]}, N[e]));
+    });
+    LanczosOptions lanczos;
+    lanczos.tolerance = options.tolerance;
+    lanczos.max_restarts = options.max_restarts;
+    const PencilModes modes = lowest_positive_modes(st.factor, B, options.modes, lanczos, "buckling");
+    res.factors = modes.lambdas;
+    res.operations = modes.operations;
+    for (const Eigen::VectorXd& phi : modes.modes)
+      res.mode_shapes.push_back(expand_unit_mode(st.map, phi, static_cast<int>(m.nodes.size())));
+  }
+  res.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  return res;
+}
+
+}  // namespace sheetgen

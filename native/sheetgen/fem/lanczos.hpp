@@ -1,0 +1,28 @@
+#pragma once
+// The largest eigenpairs of a symmetric operator by implicitly restarted
+// Lanczos: the one door to Spectra (libspectra-dev, on Eigen). Buckling and
+// vibration hand it K's shift-invert transform (docs/fem.md "Eigenproblems").
+#include <Eigen/Core>
+#include <functional>
+
+namespace sheetgen {
+
+struct LanczosOptions {
+  int count = 1;             // eigenpairs wanted
+  int subspace = 0;          // Lanczos vectors; <= 0: max(2 count + 1, 20), at most n
+  double tolerance = 1e-9;   // relative residual of each Ritz value
+  int max_restarts = 500;
+};
+
+struct LanczosResult {
+  Eigen::VectorXd values;   // the `count` largest algebraic eigenvalues, descending
+  Eigen::MatrixXd vectors;  // n x count, unit columns
+  int operations = 0;       // operator applications
+};
+
+// `apply(x, y)` sets y = A x for vectors of length n. Throws FemError when the
+// iteration does not converge (named `what`, e.g. "buckling").
+LanczosResult largest_eigenpairs(int n, const std::function<void(const double* x, double* y)>& apply,
+                                 const LanczosOptions& options, const char* what);
+
+}  // namespace sheetgen

@@ -1,0 +1,162 @@
+#include "sheetgen/fem/shell_assembly.hpp"
+
+namespace sheetgen {
+
+DofMap build_dof_map(const ShellModel& m) {
+  const int n = static_cast<int>(m.nodes.size());
+  std::vector<std::array<bool, 6>> fixed(n, std::array<bool, 6>{});
+  for (const NodeSupport& s : m.supports)
+    for (int d = 0; d < 6; ++d) fixed[s.node][d] = fixed[s.node][d] || s.fixed[d];
+  std::vector<char> active(n, 0);
+  for (const auto& t : m.triangles)
+    for (int k : t) active[k] = 1;
+  std::vector<int> slave_link(n, -1);
+  for (size_t l = 0; l < m.rigid_links.size(); ++l) {
+    active[m.rigid_links[l].master] = 1;
+    for (int s : m.rigid_links[l].slaves) slave_link[s] = static_cast<int>(l);
+  }
+  DofMap map;
+  std::vector<int> red(6 * static_cast<size_t>(n), -1);
+  for (int i = 0; i < n; ++i) {
+    if (!active[i] || slave_link[i] >= 0) continue;
+    for (int d = 0; d < 6; ++d)
+      if (!fixed[i][d]) red[6 * i + d] = map.reduced++;
+  }
+  map.start.assign(6 * static_cast<size_t>(n) + 1, 0);
+  map.index.reserve(6 * static_cast<size_t>(n));
+  map.coef.reserve(6 * static_cast<size_t>(n));
+  auto push = [&](int r, double c) {
+    if (r >= 0 && c != 0.0) {
+      map.index.push_back(r);
+      map.coef.push_back(c);
+    }
+  };
+  for (int i = 0; i < n; ++i) {
+    const int l = slave_link[i];
+    for (int d = 0; d < 6; ++d) {
+      if (l < 0) {
+        push(red[6 * i + d], 1.0);
+      } else {
+        const int mi = m.rigid_links[l].master;
+        const Vec3 r = m.nodes[i] - m.nodes[mi];
+        const int* rm = &red[6 * mi];
+        push(rm[d], 1.0);  // u_s = u_m + theta_m x r; theta_s = theta_m
+        if (d == 0) { push(rm[4], r.z()); push(rm[5], -r.y()); }
+        if (d == 1) { push(rm[5], r.x()); push(rm[3], -r.z()); }
+        if (d == 2) { push(rm[3], r.y()); push(rm[4], -r.x()); }
+      }
+      map.start[6 * i + d + 1] = static_cast<int>(map.index.size());
+    }
+  }
+  return map;
+}
+
+namespace {
+
+using Triplets = std::vector<Eigen::Triplet<double, int>>;
+
+// Adds T_a^T A T_b for the DOF lists (full DOF ids) `dofs` of one element or
+// node, lower triangle only.
+template <int N>
+void add_triplets(Triplets& triplets, const DofMap& map, const std::array<int, N>& dofs,
+                  const Eigen::Matrix<double, N, N>& A) {
+  int beg[N], end[N];
+  for (int a = 0; a < N; ++a) {
+    beg[a] = map.start[dofs[a]];
+    end[a] = map.start[dofs[a] + 1];
+  }
+  for (int a = 0; a < N; ++a)
+    for (int pa = beg[a]; pa < end[a]; ++pa) {
+      const int ia = map.index[pa];
+      const double ca = map.coef[pa];
+      for (int b = 0; b < N; ++b)
+        for (int pb = beg[b]; pb < end[b]; ++pb) {
+          const int ib = map.index[pb];
+          if (ib > ia) continue;  // lower triangle only
+          triplets.emplace_back(ia, ib, ca * map.coef[pb] * A(a, b));
+        }
+    }
+}
+
+std::uint64_t fnv1a(const void* data, size_t bytes, std::uint64_t h) {
+  const auto* p = static_cast<const unsigned char*>(data);
+  for (size_t i = 0; i < bytes; ++i) {
+    h ^= p[i];
+    h *= 1099511628211ull;
+  }
+  return h;
+}
+
+}  // namespace
+
+SparseMatrix assemble_elements(const ShellModel& m, const DofMap& map,
+                               const std::function<Matrix18d(int element)>& element_matrix,
+                               const std::vector<NodalBlock>& nodal_blocks) {
+  const int n_elem = static_cast<int>(m.triangles.size());
+  Triplets triplets;
+  triplets.reserve(static_cast<size_t>(n_elem) * 171 + nodal_blocks.size() * 21);  // 18*19/2 per element
+  for (int e = 0; e < n_elem; ++e) {
+    const auto& t = m.triangles[e];
+    std::array<int, 18> dofs;
+    for (int a = 0; a < 18; ++a) dofs[a] = 6 * t[a / 6] + a % 6;
+    add_triplets<18>(triplets, map, dofs, element_matrix(e));
+  }
+  for (const NodalBlock& b : nodal_blocks) {
+    std::array<int, 6> dofs;
+    for (int a = 0; a < 6; ++a) dofs[a] = 6 * b.node + a;
+    add_triplets<6>(triplets, map, dofs, b.matrix);
+  }
+  SparseMatrix A(map.reduced, map.reduced);
+  A.setFromTriplets(triplets.begin(), triplets.end());
+  return A;
+}
+
+SparseMatrix assemble_stiffness(const ShellModel& m, const DofMap& map, const ShellElementOptions& element) {
+  return assemble_elements(m, map, [&](int e) {
+    const auto& t = m.triangles[e];
+    return shell_element_stiffness({m.nodes[t[0]], m.nodes[t[1]], m.nodes[t[2]]}, m.material, element);
+  });
+}
+
+Eigen::VectorXd assemble_load(const std::vector<NodalLoad>& loads, const DofMap& map, int n_nodes) {
+  Eigen::VectorXd f = Eigen::VectorXd::Zero(map.reduced);
+  std::vector<Vector6d> f_full(n_nodes, Vector6d::Zero());
+  for (const NodalLoad& load : loads) {
+    f_full[load.node].head<3>() += load.force;
+    f_full[load.node].tail<3>() += load.moment;
+  }
+  for (int i = 0; i < n_nodes; ++i)
+    for (int d = 0; d < 6; ++d)
+      for (int p = map.start[6 * i + d]; p < map.start[6 * i + d + 1]; ++p)
+        f(map.index[p]) += map.coef[p] * f_full[i](d);
+  return f;
+}
+
+std::vector<Vector6d> expand_displacements(const DofMap& map, const Eigen::VectorXd& uh, int n_nodes) {
+  std::vector<Vector6d> u(n_nodes, Vector6d::Zero());
+  for (int i = 0; i < n_nodes; ++i)
+    for (int d = 0; d < 6; ++d) {
+      double v = 0;
+      for (int p = map.start[6 * i + d]; p < map.start[6 * i + d + 1]; ++p) v += map.coef[p] * uh(map.index[p]);
+      u[i](d) = v;
+    }
+  return u;
+}
+
+Eigen::VectorXd symmetric_product(const SparseMatrix& A_lower, const Eigen::VectorXd& x) {
+  return A_lower.selfadjointView<Eigen::Lower>() * x;
+}
+
+std::uint64_t pattern_hash(const SparseMatrix& K) {
+  std::uint64_t h = 1469598103934665603ull;
+  const Eigen::Index rows = K.rows();
+  h = fnv1a(&rows, sizeof rows, h);
+  h = fnv1a(K.outerIndexPtr(), sizeof(int) * (K.cols() + 1), h);
+  return fnv1a(K.innerIndexPtr(), sizeof(int) * K.nonZeros(), h);
+}
+
+std::uint64_t value_hash(const SparseMatrix& K) {
+  return fnv1a(K.valuePtr(), sizeof(double) * K.nonZeros(), pattern_hash(K));
+}
+
+}  // namespace sheetgen

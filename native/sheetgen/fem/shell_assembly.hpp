@@ -1,0 +1,57 @@
+#pragma once
+// The FEM's global algebra (internal to the fem area): the reduced DOF map of
+// supports and rigid links (u = T u_hat), and assembly of element matrices
+// and load vectors through it. Statics, buckling and vibration share it.
+#include <Eigen/SparseCore>
+#include <array>
+#include <cstdint>
+#include <functional>
+#include <vector>
+
+#include "sheetgen/fem/shell_model.hpp"
+
+namespace sheetgen {
+
+using SparseMatrix = Eigen::SparseMatrix<double, Eigen::ColMajor, int>;
+
+// Full DOF (6 per node) -> linear combination of reduced DOFs: u = T u_hat.
+struct DofMap {
+  std::vector<int> start;  // 6 #N + 1, CSR offsets into index/coef
+  std::vector<int> index;  // reduced DOF
+  std::vector<double> coef;
+  int reduced = 0;
+};
+
+DofMap build_dof_map(const ShellModel& m);
+
+using Matrix6d = Eigen::Matrix<double, 6, 6>;
+
+// A 6 x 6 matrix on one node's DOFs (a rigid body's mass on its node).
+struct NodalBlock {
+  int node = -1;
+  Matrix6d matrix = Matrix6d::Zero();
+};
+
+// A_hat = T^T A T (lower triangle) of an 18 x 18 world-frame matrix per
+// element plus nodal blocks.
+SparseMatrix assemble_elements(const ShellModel& m, const DofMap& map,
+                               const std::function<Matrix18d(int element)>& element_matrix,
+                               const std::vector<NodalBlock>& nodal_blocks = {});
+
+// The stiffness K_hat (lower triangle), N/m.
+SparseMatrix assemble_stiffness(const ShellModel& m, const DofMap& map, const ShellElementOptions& element);
+
+// f_hat = T^T f of nodal loads (N, N m).
+Eigen::VectorXd assemble_load(const std::vector<NodalLoad>& loads, const DofMap& map, int n_nodes);
+
+// u = T u_hat: per node (ux, uy, uz, rx, ry, rz).
+std::vector<Vector6d> expand_displacements(const DofMap& map, const Eigen::VectorXd& uh, int n_nodes);
+
+// y = A x for the lower triangle `A_lower` of a symmetric matrix.
+Eigen::VectorXd symmetric_product(const SparseMatrix& A_lower, const Eigen::VectorXd& x);
+
+// FNV-1a over a sparse matrix's index arrays (its pattern) or values.
+std::uint64_t pattern_hash(const SparseMatrix& K);
+std::uint64_t value_hash(const SparseMatrix& K);
+
+}  // namespace sheetgen

@@ -1,0 +1,49 @@
+#pragma once
+// The factorisation of the reduced stiffness K_hat (internal to the fem area):
+// the one door to CHOLMOD and Eigen's sparse LDL^T. Keeps the symbolic
+// analysis while the sparsity pattern repeats (composition solves hundreds of
+// similar candidates) and the numeric factor while K itself repeats (statics,
+// buckling and vibration of one part share it).
+#include <Eigen/Core>
+#include <cstdint>
+#include <memory>
+
+#include "sheetgen/fem/shell_assembly.hpp"
+#include "sheetgen/fem/shell_model.hpp"
+
+namespace sheetgen {
+
+class StiffnessFactor {
+ public:
+  StiffnessFactor();
+  ~StiffnessFactor();
+
+  // Factors K (lower triangle). Reuses the symbolic analysis when the pattern
+  // repeats and skips the numeric factorisation when K's values repeat too.
+  // Throws FemError when K is singular: a pivot below singular_pivot_ratio
+  // times its diagonal entry is a rigid-body mode or mechanism.
+  struct Outcome {
+    bool pattern_reused = false;
+    bool factor_reused = false;
+  };
+  Outcome factorise(const SparseMatrix& K, ShellSolverBackend backend, double singular_pivot_ratio);
+
+  // K^-1 F for each column of F.
+  Eigen::MatrixXd solve(const Eigen::MatrixXd& F) const;
+
+  // With K = W W^T (W = P^T L D^1/2 of the LDL^T backend): x -> W^-1 x and
+  // y -> W^-T y. The generalized eigenproblem K phi = lambda B phi becomes the
+  // standard one (W^-1 B W^-T) psi = (1 / lambda) psi, phi = W^-T psi.
+  // Requires the LDL^T backend (eigen analyses always factor with it).
+  Eigen::VectorXd half_solve(const Eigen::VectorXd& x) const;
+  Eigen::VectorXd half_solve_transpose(const Eigen::VectorXd& y) const;
+
+  int symbolic_analyses() const;
+  ShellSolverBackend backend() const;
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace sheetgen
