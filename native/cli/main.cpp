@@ -1,5 +1,6 @@
 // sheetgen command line: batch runs without Blender (docs/architecture.md "Interfaces").
 #include <CLI/CLI.hpp>
+#include <Eigen/Eigenvalues>
 
 #include <chrono>
 #include <cerrno>
@@ -36,6 +37,36 @@ std::string fmt_vec(const Vec3& v) {
   return buf;
 }
 
+// A load's mass properties and, unless it is today's single "design" case, every case.
+void print_mass_and_cases(const sheetgen::Load& l) {
+  if (l.mass) {
+    const Eigen::Vector3d principal = Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d>(l.inertia, Eigen::EigenvaluesOnly).eigenvalues();
+    std::printf("  %-20s mass %.4g kg  centre of mass %s m  principal inertia %s kg*m^2\n", "", *l.mass,
+                fmt_vec(l.center_of_mass).c_str(), fmt_vec(principal).c_str());
+  }
+  if (l.cases.size() == 1 && l.cases[0].name == "design") return;
+  for (const auto& c : l.cases) {
+    char limit[48] = "";
+    if (c.max_deflection) std::snprintf(limit, sizeof limit, "  max deflection %.4g mm", *c.max_deflection * 1e3);
+    std::printf("  %-20s case %-16s force %s N (|F| %.4g N)  moment %s N*m%s\n", "", c.name.c_str(), fmt_vec(c.force).c_str(),
+                c.force.norm(), fmt_vec(c.moment).c_str(), limit);
+  }
+}
+
+// The inertia envelope (problem-level load_cases) and the buckling and frequency floors.
+void print_envelope_and_requirements(const sheetgen::Problem& p) {
+  if (const auto& e = p.load_cases) {
+    std::printf("load cases: %s%zu factors on every load with a mass; forward %s  left %s  up %s\n",
+                e->preset.empty() ? "" : (e->preset + ", ").c_str(), e->factors.size(), fmt_vec(e->forward).c_str(),
+                fmt_vec(e->left()).c_str(), fmt_vec(e->up).c_str());
+  }
+  const auto& r = p.requirements;
+  char freq[48] = "none";
+  if (r.min_frequency_hz) std::snprintf(freq, sizeof freq, "%.4g Hz", *r.min_frequency_hz);
+  std::printf("requirements: safety factor %.4g, min MS %.4g, min buckling factor %.4g, min frequency %s\n", r.safety_factor,
+              r.min_margin_of_safety, r.min_buckling_factor, freq);
+}
+
 void print_summary(const sheetgen::Problem& p) {
   std::printf("problem %s\n", p.source.c_str());
   std::printf("meshes: %zu (%d triangles)\n", p.meshes.size(), p.triangle_count());
@@ -46,9 +77,12 @@ void print_summary(const sheetgen::Problem& p) {
   for (const auto& r : p.rivet_areas)
     std::printf("  %-20s on %-16s %5zu faces  %.6f m^2\n", r.name.c_str(), p.meshes[r.mesh].name.c_str(), r.faces.size(), r.area_m2);
   std::printf("loads: %zu\n", p.loads.size());
-  for (const auto& l : p.loads)
+  for (const auto& l : p.loads) {
     std::printf("  %-20s centre %s m  size %s m  force %s N  moment %s N*m\n", l.name.c_str(), fmt_vec(l.center).c_str(),
                 fmt_vec(l.size).c_str(), fmt_vec(l.force).c_str(), fmt_vec(l.moment).c_str());
+    print_mass_and_cases(l);
+  }
+  print_envelope_and_requirements(p);
   const auto b = p.bounds();
   std::printf("bounding box: min %s m  max %s m  (diagonal %.4g m)\n", fmt_vec(b.min).c_str(), fmt_vec(b.max).c_str(), b.diagonal());
   std::printf("sheet: t = %.4g mm, E = %.4g GPa, Fty = %.4g MPa; bend radius %.4g mm, K %.3g, min flange %.4g mm\n",

@@ -1,5 +1,6 @@
 #include "sheetgen/core/json_reader.hpp"
 
+#include <algorithm>
 #include <climits>
 #include <cmath>
 #include <cstring>
@@ -119,6 +120,29 @@ double JsonNode::non_negative_or(const std::string& key, double fallback) const 
 long long JsonNode::integer_or(const std::string& key, long long fallback) const {
   auto n = find(key);
   return n ? n->as_integer() : fallback;
+}
+
+void reject_unknown(const JsonNode& node, std::initializer_list<const char*> allowed) {
+  for (auto it = node.raw().begin(); it != node.raw().end(); ++it) {
+    const std::string& key = it.key();
+    if (std::none_of(allowed.begin(), allowed.end(), [&](const char* a) { return key == a; })) {
+      std::string list;
+      for (const char* a : allowed) list += std::string(list.empty() ? "" : ", ") + a;
+      node.fail("unknown field '" + key + "' (expected one of: " + list + ")");
+    }
+  }
+}
+
+std::string checked_name(const JsonNode& parent, std::set<std::string>& seen, const char* what) {
+  const JsonNode n = parent.at("name");
+  std::string name = n.as_string();
+  if (name.empty()) n.fail("name must not be empty");
+  // Names become output folder names: keep them to one path component.
+  if (name.find('/') != std::string::npos || name.find('\\') != std::string::npos || name == "." || name == ".." ||
+      name.find('\0') != std::string::npos)
+    n.fail("name '" + name + "' must not contain '/' or '\\' or be '.' or '..'");
+  if (!seen.insert(name).second) n.fail(std::string("duplicate ") + what + " name '" + name + "'");
+  return name;
 }
 
 }  // namespace sheetgen

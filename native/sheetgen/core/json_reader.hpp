@@ -1,8 +1,10 @@
 #pragma once
 // Typed, path-aware access to a JSON document: every failure throws an
 // InputError naming the file and the JSON path ("loads[2].force").
+#include <initializer_list>
 #include <nlohmann/json.hpp>
 #include <optional>
+#include <set>
 #include <string>
 
 #include "sheetgen/core/triangle_mesh.hpp"
@@ -50,5 +52,13 @@ class JsonNode {
   std::string file_;
   std::string path_;
 };
+
+// Fails naming the first member of the object `node` that is not in `allowed`
+// (a misspelt field must not silently become a default).
+void reject_unknown(const JsonNode& node, std::initializer_list<const char*> allowed);
+
+// parent["name"]: a non-empty string, one path component (names become output
+// folder names), not yet in `seen` (then added); `what` names the kind in errors.
+std::string checked_name(const JsonNode& parent, std::set<std::string>& seen, const char* what);
 
 }  // namespace sheetgen

@@ -61,6 +61,11 @@ double Requirements::compliance_limit(double force_magnitude) const {
   return force_magnitude * deflection;
 }
 
+double Requirements::compliance_limit(const LoadCase& load_case) const {
+  const double f = load_case.force.norm();
+  return load_case.max_deflection ? f * *load_case.max_deflection : compliance_limit(f);
+}
+
 BoundingBox Problem::bounds() const {
   BoundingBox b;
   for (const auto& m : meshes) b.extend(bounding_box(m.mesh));
@@ -78,29 +83,6 @@ int Problem::triangle_count() const {
 // ---------------------------------------------------------------- parsing
 
 namespace {
-
-void reject_unknown(const JsonNode& node, std::initializer_list<const char*> allowed) {
-  for (auto it = node.raw().begin(); it != node.raw().end(); ++it) {
-    const std::string& key = it.key();
-    if (std::none_of(allowed.begin(), allowed.end(), [&](const char* a) { return key == a; })) {
-      std::string list;
-      for (const char* a : allowed) list += std::string(list.empty() ? "" : ", ") + a;
-      node.fail("unknown field '" + key + "' (expected one of: " + list + ")");
-    }
-  }
-}
-
-std::string checked_name(const JsonNode& parent, std::set<std::string>& seen, const char* what) {
-  const JsonNode n = parent.at("name");
-  std::string name = n.as_string();
-  if (name.empty()) n.fail("name must not be empty");
-  // Names become output folder names: keep them to one path component.
-  if (name.find('/') != std::string::npos || name.find('\\') != std::string::npos || name == "." || name == ".." ||
-      name.find('\0') != std::string::npos)
-    n.fail("name '" + name + "' must not contain '/' or '\\' or be '.' or '..'");
-  if (!seen.insert(name).second) n.fail(std::string("duplicate ") + what + " name '" + name + "'");
-  return name;
-}
 
 TriangleMesh inline_mesh(const JsonNode& node) {
   TriangleMesh mesh;
@@ -242,6 +224,99 @@ void parse_rivet_areas(const JsonNode& root, Problem& p) {
   }
 }
 
+void parse_box(const JsonNode& l, Load& load) {
+  load.center = l.at("center").as_vec3();
+  const JsonNode size = l.at("size");
+  load.size = size.as_vec3();
+  if (!(load.size.array() > 0).all())
+    size.fail("load box size must be positive in x, y and z, got [" + std::to_string(load.size.x()) + ", " +
+              std::to_string(load.size.y()) + ", " + std::to_string(load.size.z()) + "] m");
+  if (auto rot = l.find("rotation")) {
+    if (!rot->raw().is_array() || rot->raw().size() != 4) rot->fail("expected a quaternion [w, x, y, z]");
+    double q[4];
+    for (int k = 0; k < 4; ++k) q[k] = rot->at(k).as_number();
+    // Scale by the largest component first: squaring 1e200 overflows to inf
+    // (normalized() would return a zero quaternion) and 1e-200 underflows to 0.
+    const double big = std::max({std::abs(q[0]), std::abs(q[1]), std::abs(q[2]), std::abs(q[3])});
+    if (!(big > 0)) rot->fail("quaternion has zero length");
+    Eigen::Quaterniond quat(q[0] / big, q[1] / big, q[2] / big, q[3] / big);
+    load.rotation = quat.normalized();
+  }
+}
+
+// mass, center_of_mass and inertia (docs/problem-format.md "Load cases").
+void parse_mass_properties(const JsonNode& l, Load& load) {
+  load.center_of_mass = load.center;
+  const JsonNode* needs_mass = nullptr;
+  std::optional<JsonNode> com = l.find("center_of_mass"), inertia = l.find("inertia");
+  if (com) needs_mass = &*com;
+  else if (inertia) needs_mass = &*inertia;
+  auto m = l.find("mass");
+  if (!m) {
+    if (needs_mass) needs_mass->fail("is given without 'mass' (kg): give the box's mass too");
+    return;
+  }
+  load.mass = m->as_positive();
+  if (com) {
+    load.center_of_mass = com->as_vec3();
+    // The mass is inside its box; 1 um of slack for coordinates written in float32.
+    constexpr double kOutsideTolerance = 1e-6;  // m
+    const double outside = load.signed_distance(load.center_of_mass);
+    if (outside > kOutsideTolerance)
+      com->fail("centre of mass lies " + std::to_string(outside * 1e3) + " mm outside the load box");
+  }
+  if (inertia) {
+    load.inertia = parse_inertia(*inertia);
+  } else {
+    load.inertia = uniform_box_inertia(*load.mass, load.size, load.rotation);
+    // Only absurd masses or sizes (1e300 kg, 1e-200 m) overflow or vanish here.
+    if (!load.inertia.allFinite() || !(load.inertia.diagonal().array() > 0).all())
+      m->fail("the uniform box inertia of this mass and size is not finite and positive; give 'inertia'");
+  }
+}
+
+// A case of the load itself carries the name of an envelope factor: name the
+// load's own field, which the user can rename.
+[[noreturn]] void duplicate_of_factor(const JsonNode& l, const Load& load, const std::string& name) {
+  const std::string problem = "case name '" + name + "' is also a factor of load_cases; names must be unique per load";
+  if (auto cases = l.find("cases"))
+    for (size_t k = 0; k < load.cases.size(); ++k)
+      if (load.cases[k].name == name) cases->at(k).at("name").fail(problem);
+  l.at("force").fail("the case of 'force' is named '" + name + "', which is also a factor of load_cases; rename the factor");
+}
+
+// `cases`, or `force`/`moment` as the case "design"; then one case per factor
+// of the problem's `load_cases` when the box has a mass.
+void parse_cases(const JsonNode& l, const std::optional<InertiaEnvelope>& envelope, Load& load) {
+  std::set<std::string> names;
+  const bool inertia = load.mass && envelope;
+  if (auto cases = l.find("cases")) {
+    for (const char* key : {"force", "moment"})
+      if (l.has(key)) l.at(key).fail("give either 'cases' or 'force'/'moment', not both");
+    load.cases = parse_explicit_cases(*cases, names);
+  } else if (l.has("force") || l.has("moment") || !inertia) {
+    if (!l.has("force"))  // the message names what else would do
+      throw InputError(l.file(), l.path() + ".force",
+                       "required field is missing (or give 'cases', or a 'mass' with a problem-level 'load_cases')");
+    const JsonNode force = l.at("force");
+    LoadCase design{"design", force.as_vec3(), Vec3::Zero(), std::nullopt};
+    if (auto m = l.find("moment")) design.moment = m->as_vec3();
+    if (design.force.norm() == 0 && design.moment.norm() == 0) force.fail("load '" + load.name + "' has zero force and zero moment");
+    names.insert(design.name);
+    load.cases.push_back(std::move(design));
+  }
+  if (inertia) {
+    for (const InertiaFactor& f : envelope->factors) {
+      if (!names.insert(f.name).second) duplicate_of_factor(l, load, f.name);
+      LoadCase c = inertia_case(*envelope, f, *load.mass);
+      if (!c.force.allFinite()) l.at("mass").fail("mass times factor '" + f.name + "' gives a force that is not finite");
+      load.cases.push_back(std::move(c));
+    }
+  }
+  load.force = load.cases.front().force;
+  load.moment = load.cases.front().moment;
+}
+
 void parse_loads(const JsonNode& root, Problem& p) {
   const JsonNode loads = root.at("loads");
   if (loads.size() == 0) loads.fail("there are no loads: nothing to hold");
@@ -249,32 +324,44 @@ void parse_loads(const JsonNode& root, Problem& p) {
   for (size_t i = 0; i < loads.size(); ++i) {
     const JsonNode l = loads.at(i);
     l.expect_object();
-    reject_unknown(l, {"name", "center", "size", "rotation", "force", "moment"});
+    reject_unknown(l, {"name", "center", "size", "rotation", "force", "moment", "mass", "center_of_mass", "inertia", "cases"});
     Load load;
     load.name = checked_name(l, names, "load");
-    load.center = l.at("center").as_vec3();
-    const JsonNode size = l.at("size");
-    load.size = size.as_vec3();
-    if (!(load.size.array() > 0).all())
-      size.fail("load box size must be positive in x, y and z, got [" + std::to_string(load.size.x()) + ", " +
-                std::to_string(load.size.y()) + ", " + std::to_string(load.size.z()) + "] m");
-    if (auto rot = l.find("rotation")) {
-      if (!rot->raw().is_array() || rot->raw().size() != 4) rot->fail("expected a quaternion [w, x, y, z]");
-      double q[4];
-      for (int k = 0; k < 4; ++k) q[k] = rot->at(k).as_number();
-      // Scale by the largest component first: squaring 1e200 overflows to inf
-      // (normalized() would return a zero quaternion) and 1e-200 underflows to 0.
-      const double big = std::max({std::abs(q[0]), std::abs(q[1]), std::abs(q[2]), std::abs(q[3])});
-      if (!(big > 0)) rot->fail("quaternion has zero length");
-      Eigen::Quaterniond quat(q[0] / big, q[1] / big, q[2] / big, q[3] / big);
-      load.rotation = quat.normalized();
-    }
-    const JsonNode force = l.at("force");
-    load.force = force.as_vec3();
-    if (auto m = l.find("moment")) load.moment = m->as_vec3();
-    if (load.force.norm() == 0 && load.moment.norm() == 0) force.fail("load '" + load.name + "' has zero force and zero moment");
+    parse_box(l, load);
+    parse_mass_properties(l, load);
+    parse_cases(l, p.load_cases, load);
     p.loads.push_back(load);
   }
+}
+
+// The problem-level inertia envelope; read before the loads, which it expands.
+void parse_envelope(const JsonNode& root, Problem& p) {
+  if (auto env = root.find("load_cases")) p.load_cases = parse_inertia_envelope(*env);
+}
+
+// An envelope that reaches no box is a forgotten mass, not a choice: refuse it
+// rather than design parts that ignore it.
+void check_envelope_used(const JsonNode& root, const Problem& p) {
+  if (!p.load_cases) return;
+  if (std::none_of(p.loads.begin(), p.loads.end(), [](const Load& l) { return l.mass.has_value(); }))
+    root.at("load_cases").fail("applies to loads with a 'mass' (kg) and no load has one; give the boxes their mass");
+}
+
+// The buckling floor defaults to the safety factor read just before it.
+void parse_requirements(const JsonNode& root, Requirements& req) {
+  auto r = root.find("requirements");
+  if (!r) return;
+  r->expect_object();
+  reject_unknown(*r, {"max_compliance", "max_deflection", "min_margin_of_safety", "safety_factor", "clearance",
+                      "min_buckling_factor", "min_frequency_hz"});
+  if (auto c = r->find("max_compliance")) req.max_compliance = c->as_positive();
+  if (auto d = r->find("max_deflection")) req.max_deflection = d->as_positive();
+  if (req.max_compliance && req.max_deflection) r->fail("give max_compliance or max_deflection, not both");
+  req.min_margin_of_safety = r->number_or("min_margin_of_safety", req.min_margin_of_safety);
+  req.safety_factor = r->positive_or("safety_factor", req.safety_factor);
+  req.clearance = r->non_negative_or("clearance", req.clearance);
+  req.min_buckling_factor = r->positive_or("min_buckling_factor", req.safety_factor);
+  if (auto f = r->find("min_frequency_hz")) req.min_frequency_hz = f->as_positive();
 }
 
 void parse_settings(const JsonNode& root, Problem& p) {
@@ -291,17 +378,7 @@ void parse_settings(const JsonNode& root, Problem& p) {
     mat.thickness = m->positive_or("thickness", mat.thickness);
   }
   const double t = p.material.thickness;
-  if (auto r = root.find("requirements")) {
-    r->expect_object();
-    reject_unknown(*r, {"max_compliance", "max_deflection", "min_margin_of_safety", "safety_factor", "clearance"});
-    Requirements& req = p.requirements;
-    if (auto c = r->find("max_compliance")) req.max_compliance = c->as_positive();
-    if (auto d = r->find("max_deflection")) req.max_deflection = d->as_positive();
-    if (req.max_compliance && req.max_deflection) r->fail("give max_compliance or max_deflection, not both");
-    req.min_margin_of_safety = r->number_or("min_margin_of_safety", req.min_margin_of_safety);
-    req.safety_factor = r->positive_or("safety_factor", req.safety_factor);
-    req.clearance = r->non_negative_or("clearance", req.clearance);
-  }
+  parse_requirements(root, p.requirements);
   Manufacturing& mf = p.manufacturing;
   std::optional<JsonNode> m = root.find("manufacturing");
   if (m) {
@@ -436,7 +513,7 @@ Problem parse_problem(const std::string& json_text, const std::string& source, c
   const JsonNode root(doc, source, "");
   root.expect_object();
   reject_unknown(root, {"format", "name", "description", "units", "environment", "rivet_areas", "loads", "material",
-                        "requirements", "manufacturing", "search"});
+                        "load_cases", "requirements", "manufacturing", "search"});
   const JsonNode format = root.at("format");
   if (format.as_string() != "sheetgen-problem/1")
     format.fail("unsupported format '" + format.as_string() + "' (expected 'sheetgen-problem/1')");
@@ -445,7 +522,9 @@ Problem parse_problem(const std::string& json_text, const std::string& source, c
   parse_settings(root, p);  // first: defaults of manufacturing depend on thickness
   parse_meshes(root, base_dir, p);
   parse_rivet_areas(root, p);
+  parse_envelope(root, p);
   parse_loads(root, p);
+  check_envelope_used(root, p);
   check_scale(root, p);
   return p;
 }

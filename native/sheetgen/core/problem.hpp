@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "sheetgen/core/load_cases.hpp"
 #include "sheetgen/core/triangle_mesh.hpp"
 
 namespace sheetgen {
@@ -29,8 +30,22 @@ struct Load {
   Vec3 center = Vec3::Zero();                              // m, box centroid (world)
   Vec3 size = Vec3::Zero();                                // m, box extents along its local x, y, z
   Eigen::Quaterniond rotation = Eigen::Quaterniond::Identity();  // local -> world
-  Vec3 force = Vec3::Zero();                               // N, world frame, acts at the centroid
-  Vec3 moment = Vec3::Zero();                              // N*m, world frame, about the centroid
+  // The first of `cases` (kept so single-case code reads it as before): N, world
+  // frame, acting at the centre of mass; N*m about it.
+  Vec3 force = Vec3::Zero();
+  Vec3 moment = Vec3::Zero();
+
+  // Mass properties (docs/problem-format.md "Load cases"). The reader fills
+  // center_of_mass with `center` and inertia with uniform_box_inertia() when
+  // the file gives a mass but not them; without a mass inertia stays zero. A
+  // Load built in code sets these and `cases` itself.
+  std::optional<double> mass;                              // kg, > 0
+  Vec3 center_of_mass = Vec3::Zero();                      // m, world, inside the box
+  Eigen::Matrix3d inertia = Eigen::Matrix3d::Zero();       // kg*m^2, world frame, about center_of_mass
+  // Every static case the part must hold, each separately; names unique. After
+  // reading, never empty: the explicit `cases` or the `force`/`moment` case
+  // "design", then (with a mass) one case per factor of Problem::load_cases.
+  std::vector<LoadCase> cases;
 
   // The 8 world corners; index bit 0 = +x, bit 1 = +y, bit 2 = +z in the local frame.
   std::array<Vec3, 8> corners() const;
@@ -60,9 +75,16 @@ struct Requirements {
   double min_margin_of_safety = 0.0;     // -, MS = Fty / (SF * sigma_vm_max) - 1
   double safety_factor = 1.5;            // -
   double clearance = 1.0e-3;             // m, gap kept beyond t/2 between mid-surface and obstacles
+  // Lowest linear buckling factor over the cases (critical load / applied load),
+  // -; the reader's default is safety_factor: no buckling below ultimate load.
+  double min_buckling_factor = 1.5;
+  std::optional<double> min_frequency_hz;  // Hz, first natural frequency floor; none by default
 
   // Compliance limit for a load with force magnitude |F| (N), J.
   double compliance_limit(double force_magnitude) const;
+  // Compliance limit of one case, J: |F| * the case's own max_deflection when it
+  // has one, else compliance_limit(|F|).
+  double compliance_limit(const LoadCase& load_case) const;
 };
 
 struct Manufacturing {  // lengths m, angles rad; defaults depend on thickness t (filled on load)
@@ -102,6 +124,9 @@ struct Problem {
   std::vector<EnvironmentMesh> meshes;
   std::vector<RivetAreaSpec> rivet_areas;
   std::vector<Load> loads;
+  // The problem-level `load_cases` as read (its cases are already in every
+  // massed load's `cases`); kept so outputs can say which envelope was used.
+  std::optional<InertiaEnvelope> load_cases;
   Material material;
   Requirements requirements;
   Manufacturing manufacturing;
