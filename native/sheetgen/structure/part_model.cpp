@@ -203,6 +203,18 @@ void tie_self_rivets(PartModel& pm, const PlateGeometry& geometry, const std::ve
   }
 }
 
+// The box's cases and mass on its master node (at the box centroid). A case's
+// force acts at the centre of mass, so about the master it adds arm x F. A
+// load without a mass has no centre of mass of its own: its forces act at the
+// centroid (a Load built in code need not set center_of_mass).
+void add_load_cases(ShellModel& m, int master, const Load& load) {
+  const Vec3 arm = load.mass ? Vec3(load.center_of_mass - load.center) : Vec3::Zero();
+  m.add_load(master, load.force, load.moment + arm.cross(load.force));  // the first case: solve()'s
+  for (const LoadCase& c : load.cases)
+    m.load_cases.push_back(ShellLoadCase{c.name, {NodalLoad{master, c.force, c.moment + arm.cross(c.force)}}});
+  if (load.mass) m.point_masses.push_back(PointMass{master, *load.mass, arm, load.inertia});
+}
+
 // The load box: rigid, bonded to the base-tab nodes under it (docs/architecture.md "FEM").
 void bond_load_box(PartModel& pm, const Load& load, double t) {
   ShellModel& m = pm.model;
@@ -215,7 +227,7 @@ void bond_load_box(PartModel& pm, const Load& load, double t) {
     throw FemError("load '" + load.name + "'", "no base-tab node lies under the load box: the part is not attached to its load");
   pm.load_node = m.add_node(load.center);
   m.rigid_links.push_back(RigidLink{pm.load_node, bonded});
-  m.add_load(pm.load_node, load.force, load.moment);
+  add_load_cases(m, pm.load_node, load);
   m.load_node = pm.load_node;
 }
 
@@ -243,6 +255,7 @@ PartModel build_part_model(const Problem& problem, int load_index, const PlateGe
   clamp_flange_rivets(pm, geometry, rivets.layouts, polygon_nodes);
   tie_self_rivets(pm, geometry, rivets.layouts, options.self_rivets, polygon_nodes, ro);
   bond_load_box(pm, problem.loads[load_index], t);
+  pm.load_index = load_index;
   return pm;
 }
 

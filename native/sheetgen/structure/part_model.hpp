@@ -45,6 +45,7 @@ struct PartModelOptions {
 struct PartModel {
   ShellModel model;
   PlateMesh mesh;                     // mesh.element_polygon: element -> polygon
+  int load_index = -1;                // the problem's load this part holds
   int load_node = -1;                 // the rigid box's master (centroid) node
   std::vector<Vec3> rivets;           // m, rivet centres on flanges
   std::vector<int> rivet_polygon;     // per rivet, the flange polygon

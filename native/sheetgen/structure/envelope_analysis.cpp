@@ -1,0 +1,113 @@
+#include "sheetgen/structure/envelope_analysis.hpp"
+
+#include <chrono>
+
+#include "sheetgen/fem/buckling.hpp"
+#include "sheetgen/fem/vibration.hpp"
+
+namespace sheetgen {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+double seconds_since(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
+
+// The requirements' limit of a model case: the problem's case of that name
+// (its own max_deflection), else the limit for its force.
+double case_compliance_limit(const Problem& problem, const Load* load, const std::string& name, const Vec3& force) {
+  if (load)
+    for (const LoadCase& c : load->cases)
+      if (c.name == name) return problem.requirements.compliance_limit(c);
+  return problem.requirements.compliance_limit(force.norm());
+}
+
+CaseResult case_result(const Problem& problem, const Load* load, const ShellLoadCase& lc, const ShellResult& r) {
+  CaseResult c;
+  c.name = lc.name;
+  for (const NodalLoad& f : lc.loads) c.force += f.force;
+  c.compliance = r.compliance;
+  c.deflection = r.load_deflection;
+  c.deflection_along_force = r.deflection_along_load;
+  c.max_von_mises = r.max_von_mises;
+  c.margin_of_safety = r.margin_of_safety;
+  c.compliance_limit = case_compliance_limit(problem, load, lc.name, c.force);
+  c.stiff_enough = c.compliance <= c.compliance_limit;
+  c.strong_enough = c.margin_of_safety >= problem.requirements.min_margin_of_safety;
+  return c;
+}
+
+void find_governing_cases(EnvelopeResult& res) {
+  for (int k = 0; k < static_cast<int>(res.cases.size()); ++k) {
+    const CaseResult& c = res.cases[k];
+    auto ratio = [](const CaseResult& x) { return x.compliance / x.compliance_limit; };
+    if (res.governing_stiffness < 0 || ratio(c) > ratio(res.cases[res.governing_stiffness])) res.governing_stiffness = k;
+    if (res.governing_strength < 0 || c.margin_of_safety < res.cases[res.governing_strength].margin_of_safety)
+      res.governing_strength = k;
+    if (c.buckling_checked && c.buckling_factor < res.buckling_factor) {
+      res.buckling_factor = c.buckling_factor;
+      res.governing_buckling = k;
+    }
+  }
+}
+
+}  // namespace
+
+double EnvelopeResult::worst_compliance_ratio() const {
+  return governing_stiffness < 0 ? 0.0
+                                 : cases[governing_stiffness].compliance / cases[governing_stiffness].compliance_limit;
+}
+
+double EnvelopeResult::lowest_margin_of_safety() const {
+  return governing_strength < 0 ? std::numeric_limits<double>::infinity() : cases[governing_strength].margin_of_safety;
+}
+
+EnvelopeResult analyse_envelope(const Problem& problem, const PartModel& part, const EnvelopeOptions& options,
+                                const ShellElementOptions& element, ShellSolver& solver) {
+  const auto start = Clock::now();
+  const ShellModel& m = part.model;
+  const ShellSolveOptions so = part_solve_options(problem, element);
+  const Load* load = part.load_index >= 0 ? &problem.loads.at(part.load_index) : nullptr;
+  EnvelopeResult res;
+  res.elements = static_cast<int>(m.triangles.size());
+  auto t0 = Clock::now();
+  const std::vector<ShellLoadCase> cases = m.cases();
+  const std::vector<ShellResult> statics = solver.solve_cases(m, so);
+  res.static_seconds = seconds_since(t0);
+  res.dofs = statics.front().reduced_dofs;
+  for (size_t k = 0; k < cases.size(); ++k) res.cases.push_back(case_result(problem, load, cases[k], statics[k]));
+
+  t0 = Clock::now();
+  std::vector<std::vector<Vector6d>> modes(cases.size());
+  if (options.buckling)
+    for (size_t k = 0; k < cases.size(); ++k) {
+      const BucklingResult b = analyse_buckling(solver, m, statics[k], so);
+      res.cases[k].buckling_checked = true;
+      res.cases[k].buckling_factor = b.factor();
+      if (options.keep_mode_shapes && !b.mode_shapes.empty()) modes[k] = b.mode_shapes.front();
+    }
+  res.buckling_seconds = seconds_since(t0);
+  find_governing_cases(res);
+  if (options.keep_mode_shapes && res.governing_buckling >= 0) res.buckling_mode = modes[res.governing_buckling];
+
+  if (options.frequencies > 0) {
+    VibrationOptions vo;
+    vo.modes = options.frequencies;
+    const VibrationResult v = analyse_vibration(solver, m, so, vo);
+    res.frequencies_hz = v.frequencies_hz;
+    res.sheet_mass = v.sheet_mass;
+    res.box_mass = v.point_mass;
+    res.vibration_seconds = v.seconds;
+    if (options.keep_mode_shapes && !v.mode_shapes.empty()) res.vibration_mode = v.mode_shapes.front();
+  }
+  res.seconds = seconds_since(start);
+  return res;
+}
+
+EnvelopeResult analyse_part_envelope(const Problem& problem, int load_index, const PlateGeometry& geometry,
+                                     const PartModelOptions& model_options, const EnvelopeOptions& options,
+                                     ShellSolver* solver) {
+  const PartModel pm = build_part_model(problem, load_index, geometry, model_options);
+  ShellSolver own;
+  return analyse_envelope(problem, pm, options, model_options.element, solver ? *solver : own);
+}
+
+}  // namespace sheetgen

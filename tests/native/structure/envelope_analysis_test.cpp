@@ -1,0 +1,83 @@
+// A part over its load's envelope (docs/fem.md "Envelope analysis"): every
+// case agrees with the single-case analysis of the same force, the governing
+// cases are the extremes, and the box mass enters the frequencies.
+#include "sheetgen/structure/envelope_analysis.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "hat_bracket.hpp"
+#include "sheetgen/core/load_cases.hpp"
+
+namespace sheetgen {
+namespace {
+
+// The hat bracket's box with 4 kg and the FAR 25.561 envelope (x forward, z up)
+// after its design case.
+Problem envelope_problem() {
+  Problem p = test::bracket_problem();
+  Load& l = p.loads[0];
+  l.mass = 4.0;
+  l.center_of_mass = l.center;
+  l.inertia = uniform_box_inertia(4.0, l.size, l.rotation);
+  l.cases = {LoadCase{"design", l.force, l.moment, {}}};
+  InertiaEnvelope env;
+  env.factors = far25_561_factors();
+  for (const InertiaFactor& f : env.factors) l.cases.push_back(inertia_case(env, f, 4.0));
+  return p;
+}
+
+TEST(EnvelopeAnalysis, EveryCaseEqualsTheSingleCaseAnalysisOfItsForce) {
+  const Problem p = envelope_problem();
+  const Part part = test::hat_part(p);
+  const PlateGeometry g = plate_geometry(part, realise(part));
+  const EnvelopeResult env = analyse_part_envelope(p, 0, g);
+  ASSERT_EQ(env.cases.size(), 7u);
+  for (size_t k = 0; k < env.cases.size(); ++k) {
+    Problem one = p;
+    one.loads[0].force = p.loads[0].cases[k].force;
+    one.loads[0].moment = p.loads[0].cases[k].moment;
+    const StructuralResult s = analyse_part(one, 0, g);
+    const CaseResult& c = env.cases[k];
+    EXPECT_EQ(c.name, p.loads[0].cases[k].name);
+    EXPECT_NEAR(c.compliance / s.compliance, 1.0, 1e-9) << c.name;
+    EXPECT_NEAR(c.margin_of_safety, s.margin_of_safety, 1e-9 * std::abs(s.margin_of_safety)) << c.name;
+    EXPECT_NEAR(c.deflection_along_force, s.deflection_along_force, 1e-12) << c.name;
+    EXPECT_TRUE(c.buckling_checked);
+  }
+  // The governing cases are the extremes over the cases.
+  for (const CaseResult& c : env.cases) {
+    EXPECT_LE(c.compliance / c.compliance_limit, env.worst_compliance_ratio());
+    EXPECT_GE(c.margin_of_safety, env.lowest_margin_of_safety());
+    EXPECT_GE(c.buckling_factor, env.buckling_factor);
+  }
+  EXPECT_EQ(env.buckling_factor, env.cases[env.governing_buckling].buckling_factor);
+  ASSERT_EQ(env.frequencies_hz.size(), 3u);
+  EXPECT_GT(env.frequencies_hz[0], 0.0);
+  EXPECT_DOUBLE_EQ(env.box_mass, 4.0);
+}
+
+// A force at a centre of mass off the centroid is the same force plus its
+// moment r x F at the centroid.
+TEST(EnvelopeAnalysis, OffCentreMassAddsTheMomentOfItsForce) {
+  Problem p = envelope_problem();
+  Load& l = p.loads[0];
+  const Vec3 r(0.02, -0.01, 0.03);
+  l.center_of_mass = l.center + r;
+  const Part part = test::hat_part(p);
+  const PlateGeometry g = plate_geometry(part, realise(part));
+  EnvelopeOptions quick;
+  quick.buckling = false;
+  quick.frequencies = 0;
+  const EnvelopeResult env = analyse_part_envelope(p, 0, g, {}, quick);
+  for (size_t k = 0; k < env.cases.size(); ++k) {
+    Problem one = test::bracket_problem();
+    one.loads[0].force = l.cases[k].force;
+    one.loads[0].moment = l.cases[k].moment + r.cross(l.cases[k].force);
+    EXPECT_NEAR(env.cases[k].compliance / analyse_part(one, 0, g).compliance, 1.0, 1e-9) << env.cases[k].name;
+  }
+}
+
+}  // namespace
+}  // namespace sheetgen
