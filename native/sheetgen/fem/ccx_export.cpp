@@ -1,9 +1,8 @@
 #include "sheetgen/fem/ccx_export.hpp"
 
+#include <Eigen/Eigenvalues>
 #include <algorithm>
-#include <chrono>
-#include <cstdio>
-#include <cstdlib>
+#include <cmath>
 #include <fstream>
 #include <iomanip>
 #include <ostream>
@@ -66,9 +65,52 @@ ModelHolds model_holds(const ShellModel& m) {
   return h;
 }
 
-void check_export_options(const CcxExportOptions& options) {
+std::string str(double v) {
+  std::ostringstream s;
+  s << v;
+  return s.str();
+}
+
+void check_export_options(const ShellModel& m, const CcxExportOptions& options) {
   if (options.element_type != "S4" && options.element_type != "S4R" && options.element_type != "S8R")
-    throw FemError("ccx export", "element type must be S4, S4R or S8R (got " + options.element_type + ")");
+    throw FemError("ccx export options.element_type", "must be S4, S4R or S8R (got " + options.element_type + ")");
+  const std::vector<ShellLoadCase> cases = m.cases();
+  const std::string field = "ccx export options.";
+  if (options.buckle_case < -1 || options.buckle_case >= static_cast<int>(cases.size()))
+    throw FemError(field + "buckle_case", "must be -1 or a case index below " + std::to_string(cases.size()) +
+                                              " (got " + std::to_string(options.buckle_case) + ")");
+  if (options.buckle_case >= 0) {
+    if (options.buckling_factors < 1)
+      throw FemError(field + "buckling_factors", "must be >= 1 (got " + std::to_string(options.buckling_factors) + ")");
+    const ShellLoadCase& c = cases[options.buckle_case];
+    // ccx would scale a zero load without end; a factor of it means nothing.
+    if (std::none_of(c.loads.begin(), c.loads.end(),
+                     [](const NodalLoad& f) { return f.force.squaredNorm() > 0 || f.moment.squaredNorm() > 0; }))
+      throw FemError(field + "buckle_case", "names case '" + c.name + "', which has no non-zero load");
+  }
+  if (options.frequency_modes < 0)
+    throw FemError(field + "frequency_modes", "must be >= 0 (got " + std::to_string(options.frequency_modes) + ")");
+  if (options.frequency_modes > 0 && !(std::isfinite(m.material.density) && m.material.density > 0))
+    throw FemError("material.density", "must be a finite number > 0 kg/m^3 for *FREQUENCY (got " +
+                                           str(m.material.density) + ")");
+  // Before a line is written: a deck is never left half-written.
+  for (size_t i = 0; options.frequency_modes > 0 && i < m.point_masses.size(); ++i) {
+    const int node = m.point_masses[i].node;
+    const bool linked = std::any_of(m.rigid_links.begin(), m.rigid_links.end(), [node](const RigidLink& l) {
+      return l.master == node || std::find(l.slaves.begin(), l.slaves.end(), node) != l.slaves.end();
+    });
+    // ccx builds a rigid body from its nodes' translations alone, so a body
+    // on one shell node would leave the mass's rotation free.
+    if (!linked)
+      throw FemError("point_masses[" + std::to_string(i) + "]",
+                     "sits on node " + std::to_string(node) +
+                         ", which is in no rigid link; the CalculiX deck ties a rigid mass to a link's REF NODE");
+    try {
+      lumped_rigid_mass(m.point_masses[i], m.nodes[m.point_masses[i].node]);
+    } catch (const FemError& e) {
+      throw FemError("point_masses[" + std::to_string(i) + "]", e.problem());
+    }
+  }
 }
 
 // Numbers the model nodes that elements or rigid links use, from 1, and writes them.
@@ -191,7 +233,35 @@ void write_link_nodes(const ShellModel& m, const ModelHolds& h, Deck& d) {
     d.map.ref_node.push_back(ref);
     d.map.rot_node.push_back(rot);
   }
-  d.map.node_count = d.next;
+}
+
+// A point mass in the deck: MASS elements on points of their own, tied by a
+// *RIGID BODY of their own to the REF/ROT NODE of the link the mass's node
+// follows (its master or a slave; check_export_options makes sure there is
+// one). The separate set keeps the link's RIGIDi set the model's link alone.
+struct MassBody {
+  int ref = -1, rot = -1;          // deck ids of the REF and ROT NODE
+  std::vector<int> point_node;     // deck ids of the mass points
+  std::vector<double> point_mass;  // kg, per point
+};
+
+std::vector<MassBody> write_mass_nodes(const ShellModel& m, const ModelHolds& h, Deck& d) {
+  std::vector<MassBody> bodies;
+  for (const PointMass& p : m.point_masses) {
+    MassBody b;
+    const int link = h.link_of[p.node];
+    b.ref = d.map.ref_node[link];
+    b.rot = d.map.rot_node[link];
+    for (const CcxLumpedMass& q : lumped_rigid_mass(p, m.nodes[p.node])) {
+      const int id = ++d.next;
+      d.out << id << ", " << q.position.x() << ", " << q.position.y() << ", " << q.position.z() << "\n";
+      b.point_node.push_back(id);
+      b.point_mass.push_back(q.mass);
+    }
+    d.map.mass_ref_node.push_back(b.ref);
+    bodies.push_back(std::move(b));
+  }
+  return bodies;
 }
 
 // Elements, material, section and rigid bodies.
@@ -209,6 +279,8 @@ void write_elements(const ShellModel& m, const ModelHolds& h, const std::vector<
   d.map.element_count = eid;
   out << "*MATERIAL, NAME=SHEET\n*ELASTIC\n"
       << m.material.youngs_modulus << ", " << m.material.poisson_ratio << "\n";
+  if (std::isfinite(m.material.density) && m.material.density > 0)
+    out << "*DENSITY\n" << m.material.density << "\n";  // kg/m^3: with m, N, Pa the frequencies come out in Hz
   out << "*SHELL SECTION, ELSET=EALL, MATERIAL=SHEET\n" << m.material.thickness << "\n";
   for (size_t l = 0; l < m.rigid_links.size(); ++l) {
     const RigidLink& link = m.rigid_links[l];
@@ -219,6 +291,32 @@ void write_elements(const ShellModel& m, const ModelHolds& h, const std::vector<
     out << "*RIGID BODY, NSET=RIGID" << l + 1 << ", REF NODE=" << d.map.ref_node[l] << ", ROT NODE=" << d.map.rot_node[l]
         << "\n";
   }
+}
+
+// MASS elements (one ELSET per distinct mass: *MASS takes one value per set)
+// and the rigid body of each point mass.
+void write_mass_bodies(const std::vector<MassBody>& bodies, Deck& d) {
+  std::ostream& out = d.out;
+  int eid = d.map.element_count;
+  for (size_t k = 0; k < bodies.size(); ++k) {
+    const MassBody& b = bodies[k];
+    std::vector<std::pair<double, std::vector<int>>> groups;
+    for (size_t j = 0; j < b.point_node.size(); ++j) {
+      auto g = std::find_if(groups.begin(), groups.end(), [&](const auto& x) { return x.first == b.point_mass[j]; });
+      if (g == groups.end()) g = groups.insert(groups.end(), {b.point_mass[j], {}});
+      g->second.push_back(b.point_node[j]);
+    }
+    for (size_t g = 0; g < groups.size(); ++g) {
+      const std::string elset = "EMASS" + std::to_string(k + 1) + "_" + std::to_string(g + 1);
+      out << "*ELEMENT, TYPE=MASS, ELSET=" << elset << "\n";
+      for (int id : groups[g].second) out << ++eid << ", " << id << "\n";
+      out << "*MASS, ELSET=" << elset << "\n" << groups[g].first << "\n";
+    }
+    out << "*NSET, NSET=MASS" << k + 1 << "\n";
+    for (int id : b.point_node) out << id << ",\n";
+    out << "*RIGID BODY, NSET=MASS" << k + 1 << ", REF NODE=" << b.ref << ", ROT NODE=" << b.rot << "\n";
+  }
+  d.map.mass_element_count = eid - d.map.element_count;
 }
 
 // Where a model DOF lives in the deck: (deck node id, ccx DOF 1..6). A DOF of
@@ -241,35 +339,121 @@ class DofTarget {
   std::vector<int> master_link_;
 };
 
-// The static step: supports, held split nodes and loads.
-void write_step(const ShellModel& m, const ModelHolds& h, const Deck& d) {
-  std::ostream& out = d.out;
-  const DofTarget dof_target(m, h, d.map);
-  out << "*STEP\n*STATIC\n";
-  out << "*BOUNDARY\n";
+// Supports and held split nodes, in the model section: they hold in every step.
+void write_boundary(const ShellModel& m, const DofTarget& target, const Deck& d) {
+  d.out << "*BOUNDARY\n";
   for (const NodeSupport& s : m.supports)
     for (int k = 0; k < 6; ++k)
       if (s.fixed[k]) {
-        const auto [id, dof] = dof_target(s.node, k);
-        out << id << ", " << dof << ", " << dof << "\n";
+        const auto [id, dof] = target(s.node, k);
+        d.out << id << ", " << dof << ", " << dof << "\n";
       }
-  for (int id : d.held_clamped) out << id << ", 1, 6\n";
-  out << "*CLOAD\n";
-  for (const NodalLoad& f : m.loads)
+  for (int id : d.held_clamped) d.out << id << ", 1, 6\n";
+}
+
+// ccx keeps the concentrated loads of a step in the next ones unless OP=NEW
+// drops them; the deck's first step has none to drop (and stays "*CLOAD", as
+// the deck's readers in tools/ expect).
+void write_cloads(const std::vector<NodalLoad>& loads, const DofTarget& target, bool first_step, std::ostream& out) {
+  out << (first_step ? "*CLOAD\n" : "*CLOAD, OP=NEW\n");
+  for (const NodalLoad& f : loads)
     for (int k = 0; k < 6; ++k) {
       const double v = k < 3 ? f.force(k) : f.moment(k - 3);
       if (v == 0) continue;
-      const auto [id, dof] = dof_target(f.node, k);
+      const auto [id, dof] = target(f.node, k);
       out << id << ", " << dof << ", " << v << "\n";
     }
-  out << "*NODE PRINT, NSET=NALL\nU\n*END STEP\n";
+}
+
+// A case name inside a "**" comment line: one line, whatever it holds.
+std::string comment_text(std::string name) {
+  for (char& c : name)
+    if (c == '\n' || c == '\r') c = ' ';
+  return name;
+}
+
+// The eigenvalue steps come first, so that the last step of the deck is a
+// static case: readers that take the .dat's last displacement or stress block
+// (tools/sheetgen_tools/ccx_check.py) still see a static solution. *NODE FILE
+// writes the mode shapes to the .frd for viewing (cgx); the request carries
+// over to the static steps after them.
+void write_steps(const ShellModel& m, const DofTarget& target, const CcxExportOptions& options, Deck& d) {
+  std::ostream& out = d.out;
+  const std::vector<ShellLoadCase> cases = m.cases();
+  bool first = true;
+  if (options.buckle_case >= 0) {
+    const ShellLoadCase& c = cases[options.buckle_case];
+    // Not a PERTURBATION step: no preload, the factors multiply this step's loads alone.
+    out << "** Linear buckling of load case " << options.buckle_case + 1 << " '" << comment_text(c.name)
+        << "': each factor multiplies the loads of this step\n*STEP\n*BUCKLE\n" << options.buckling_factors << "\n";
+    write_cloads(c.loads, target, first, out);
+    out << "*NODE FILE\nU\n*END STEP\n";
+    first = false;
+  }
+  if (options.frequency_modes > 0) {
+    out << "** Natural frequencies (Hz): the sheet's *DENSITY and the MASS elements\n*STEP\n*FREQUENCY\n"
+        << options.frequency_modes << "\n*NODE FILE\nU\n*END STEP\n";
+    first = false;
+  }
+  for (size_t c = 0; c < cases.size(); ++c) {
+    out << "** Load case " << c + 1 << " '" << comment_text(cases[c].name) << "'\n*STEP\n*STATIC\n";
+    write_cloads(cases[c].loads, target, first, out);
+    out << "*NODE PRINT, NSET=NALL\nU\n*END STEP\n";
+    first = false;
+  }
+  d.map.static_steps = static_cast<int>(cases.size());
 }
 
 }  // namespace
 
+std::vector<CcxLumpedMass> lumped_rigid_mass(const PointMass& body, const Vec3& node_position) {
+  if (!std::isfinite(body.mass) || !(body.mass > 0))
+    throw FemError("point mass", "mass must be a finite number > 0 kg (got " + str(body.mass) + ")");
+  const Vec3 c = node_position + body.offset;
+  const Eigen::Matrix3d J = 0.5 * (body.inertia + body.inertia.transpose());
+  // J = tr(S) I - S for the second moment S = sum m_i r_i r_i^T about the
+  // centre, so S = tr(J)/2 I - J; m/6 at +-a_k q_k adds 2 (m/6) a_k^2 = s_k on q_k.
+  const Eigen::Matrix3d S = 0.5 * J.trace() * Eigen::Matrix3d::Identity() - J;
+  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig(S);
+  const double scale = std::abs(J.trace());
+  if (eig.eigenvalues().minCoeff() < -1e-9 * scale) {
+    const Vec3 principal = Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d>(J).eigenvalues();
+    throw FemError("point mass", "inertia breaks the triangle inequality J1 <= J2 + J3 (principal moments " +
+                                     str(principal(0)) + ", " + str(principal(1)) + ", " + str(principal(2)) +
+                                     " kg m^2), which no body has");
+  }
+  std::vector<CcxLumpedMass> points;
+  const double sixth = body.mass / 6;
+  int axes = 0;
+  for (int k = 0; k < 3; ++k) {
+    const double s = eig.eigenvalues()(k);
+    if (s <= 1e-12 * scale) continue;  // a flat or line body: no extent along q_k
+    const Vec3 a = std::sqrt(3 * s / body.mass) * eig.eigenvectors().col(k);
+    points.push_back({c + a, sixth});
+    points.push_back({c - a, sixth});
+    ++axes;
+  }
+  if (axes < 3) points.push_back({c, (3 - axes) * body.mass / 3});
+  return points;
+}
+
+int find_load_case(const ShellModel& m, const std::string& name) {
+  const std::vector<ShellLoadCase> cases = m.cases();
+  for (size_t i = 0; i < cases.size(); ++i)
+    if (cases[i].name == name) return static_cast<int>(i);
+  if (!name.empty() && name.find_first_not_of("0123456789") == std::string::npos && name.size() < 9) {
+    const int index = std::stoi(name);
+    if (index < static_cast<int>(cases.size())) return index;
+  }
+  std::string names;
+  for (const ShellLoadCase& c : cases) names += (names.empty() ? "'" : ", '") + c.name + "'";
+  throw FemError("load case", "no case is named '" + name + "' and it is no index below " +
+                                  std::to_string(cases.size()) + " (the cases: " + names + ")");
+}
+
 CcxDeckMap write_ccx_deck(const ShellModel& m, std::ostream& out, const CcxExportOptions& options) {
   validate_shell_model(m);
-  check_export_options(options);
+  check_export_options(m, options);
   const ModelHolds h = model_holds(m);
   Deck d(out);
   d.held_linked.resize(m.rigid_links.size());
@@ -277,8 +461,15 @@ CcxDeckMap write_ccx_deck(const ShellModel& m, std::ostream& out, const CcxExpor
   const std::vector<Quad> quads = split_into_quads(m, h, d);
   const std::vector<Quad> sides = options.element_type == "S8R" ? add_side_nodes(m, h, quads, d) : std::vector<Quad>{};
   write_link_nodes(m, h, d);
+  // The masses matter to the frequency step alone; a static deck stays without them.
+  std::vector<MassBody> bodies;
+  if (options.frequency_modes > 0) bodies = write_mass_nodes(m, h, d);
+  d.map.node_count = d.next;
   write_elements(m, h, quads, sides, options.element_type, d);
-  write_step(m, h, d);
+  write_mass_bodies(bodies, d);
+  const DofTarget target(m, h, d.map);
+  write_boundary(m, target, d);
+  write_steps(m, target, options, d);
   return d.map;
 }
 
@@ -289,85 +480,6 @@ CcxDeckMap write_ccx_deck(const ShellModel& model, const std::string& path, cons
   f.close();
   if (!f) throw FemError("ccx export", "writing " + path + " failed");
   return map;
-}
-
-std::map<int, Vec3> read_ccx_displacements(const std::string& dat_path) {
-  std::ifstream f(dat_path);
-  if (!f) throw FemError("ccx results", "cannot read " + dat_path);
-  std::map<int, Vec3> block, last;
-  bool in_block = false, found = false;
-  std::string line;
-  while (std::getline(f, line)) {
-    if (line.find("displacements (vx,vy,vz)") != std::string::npos) {
-      in_block = true;
-      found = true;
-      block.clear();
-      continue;
-    }
-    if (!in_block) continue;
-    std::istringstream s(line);
-    int id;
-    double x, y, z;
-    if (s >> id >> x >> y >> z) {
-      block[id] = Vec3(x, y, z);
-    } else if (!block.empty() && line.find_first_not_of(" \t\r") != std::string::npos) {
-      in_block = false;  // the next block's header
-      last = block;
-    }
-  }
-  if (in_block) last = block;
-  if (!found || last.empty()) throw FemError("ccx results", dat_path + " holds no displacement block");
-  return last;
-}
-
-CcxSolution solve_with_ccx(const ShellModel& m, const std::string& work_dir, const std::string& job,
-                           const std::string& ccx, const CcxExportOptions& options) {
-  const std::string inp = work_dir + "/" + job + ".inp";
-  const CcxDeckMap map = write_ccx_deck(m, inp, options);
-  std::remove((work_dir + "/" + job + ".dat").c_str());
-  const std::string cmd = "cd '" + work_dir + "' && '" + ccx + "' -i '" + job + "' > '" + job + ".log' 2>&1";
-  const auto t0 = std::chrono::steady_clock::now();
-  const int rc = std::system(cmd.c_str());
-  CcxSolution sol;
-  sol.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-  std::ifstream log(work_dir + "/" + job + ".log");
-  std::stringstream log_text;
-  log_text << log.rdbuf();
-  if (rc != 0 || log_text.str().find("*ERROR") != std::string::npos) {
-    std::string tail = log_text.str();
-    if (tail.size() > 400) tail = tail.substr(tail.size() - 400);
-    throw FemError("ccx", "`" + cmd + "` failed (status " + std::to_string(rc) + "): " + tail);
-  }
-  const std::map<int, Vec3> u = read_ccx_displacements(work_dir + "/" + job + ".dat");
-  auto at = [&u](int id) {
-    auto it = u.find(id);
-    return it == u.end() ? Vec3(Vec3::Zero()) : it->second;
-  };
-  sol.displacements.assign(m.nodes.size(), Vector6d::Zero());
-  for (size_t i = 0; i < m.nodes.size(); ++i)
-    if (map.node_id[i] > 0) sol.displacements[i].head<3>() = at(map.node_id[i]);
-  std::vector<char> has_rotation(m.nodes.size(), 0);
-  for (size_t l = 0; l < m.rigid_links.size(); ++l) {
-    const int master = m.rigid_links[l].master;
-    sol.displacements[master].head<3>() = at(map.ref_node[l]);
-    sol.displacements[master].tail<3>() = at(map.rot_node[l]);
-    has_rotation[master] = 1;
-  }
-  int load_node = m.load_node;
-  double best = -1;
-  for (const NodalLoad& f : m.loads) {
-    sol.compliance += f.force.dot(sol.displacements[f.node].head<3>());
-    if (f.moment.squaredNorm() > 0) {
-      if (has_rotation[f.node]) sol.compliance += f.moment.dot(sol.displacements[f.node].tail<3>());
-      else sol.compliance_complete = false;
-    }
-    if (m.load_node < 0 && sol.displacements[f.node].head<3>().norm() > best) {
-      best = sol.displacements[f.node].head<3>().norm();
-      load_node = f.node;
-    }
-  }
-  if (load_node >= 0) sol.load_deflection = sol.displacements[load_node].head<3>().norm();
-  return sol;
 }
 
 }  // namespace sheetgen
