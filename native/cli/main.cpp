@@ -126,7 +126,9 @@ void print_queries(const sheetgen::Problem& p, const sheetgen::EnvironmentOption
 }
 
 // `sheetgen export-ccx RESULT.json --load NAME --out DECK.inp`: the FEM model of
-// one load's part as a CalculiX deck. result.json names its problem file
+// one load's part as a CalculiX deck: every load case as a static step, a
+// *BUCKLE step for one case (`--buckle`) and a *FREQUENCY step (`--modes`)
+// (docs/fem.md "CalculiX export"). result.json names its problem file
 // ("problem", relative to result.json), which supplies the load box and material.
 // `--element-size MM` meshes at that size instead of the default (refinement
 // studies against CalculiX); `--solve` also solves the same model with our FEM
@@ -138,6 +140,8 @@ struct ExportCcxArgs {
   std::string displacements;  // with --solve: CSV of our displacements by deck node id (m)
   std::string element_type = "S4";  // CalculiX element: S4 (split triangles) or S8R (the same with mid-side nodes)
   bool kirchhoff = false;           // with --solve: our DKT (no transverse shear) instead of DKMT, for studies
+  std::string buckle;               // load case of the *BUCKLE step (name or index); "": the first case; "none": no step
+  int modes = 3;                    // eigenfrequencies the *FREQUENCY step asks for; 0: no step
 };
 
 namespace fs = std::filesystem;
@@ -188,17 +192,46 @@ const nlohmann::json& part_of(const nlohmann::json& doc, const std::string& load
   return *part;
 }
 
+// The deck's options from the command line: the buckling case by name or
+// index (the first by default), the number of modes.
+sheetgen::CcxExportOptions deck_options(const sheetgen::ShellModel& model, const ExportCcxArgs& a) {
+  sheetgen::CcxExportOptions o;
+  o.element_type = a.element_type;
+  if (a.buckle != "none") o.buckle_case = a.buckle.empty() ? 0 : sheetgen::find_load_case(model, a.buckle);
+  o.frequency_modes = a.modes;
+  return o;
+}
+
+// "*BUCKLE of 'design', *FREQUENCY (3 modes, 1 rigid masses), 2 static ('design', 'side')"
+std::string steps_summary(const sheetgen::ShellModel& model, const sheetgen::CcxExportOptions& o) {
+  const std::vector<sheetgen::ShellLoadCase> cases = model.cases();
+  std::string s;
+  if (o.buckle_case >= 0) s += "*BUCKLE of '" + cases[o.buckle_case].name + "', ";
+  if (o.frequency_modes > 0)
+    s += "*FREQUENCY (" + std::to_string(o.frequency_modes) + " modes, " + std::to_string(model.point_masses.size()) +
+         " rigid masses), ";
+  s += std::to_string(cases.size()) + " static (";
+  for (size_t c = 0; c < cases.size(); ++c) s += (c ? ", '" : "'") + cases[c].name + "'";
+  return s + ")";
+}
+
 // Writes beside the target and renames: a failed run leaves no half-written deck.
 sheetgen::CcxDeckMap write_deck(const sheetgen::PartModel& model, const ExportCcxArgs& a) {
   const fs::path out = fs::u8path(a.out);
   const fs::path tmp = out.parent_path() / (out.filename().u8string() + ".tmp");
+  const sheetgen::CcxExportOptions options = deck_options(model.model, a);
   sheetgen::CcxDeckMap map;
   {
     std::ofstream deck(tmp, std::ios::binary);
     if (!deck) throw sheetgen::InputError(a.out, "--out", "cannot be written (" + std::string(std::strerror(errno)) + ")");
-    sheetgen::CcxExportOptions deck_options;
-    deck_options.element_type = a.element_type;
-    map = sheetgen::write_ccx_deck(model.model, deck, deck_options);
+    try {
+      map = sheetgen::write_ccx_deck(model.model, deck, options);
+    } catch (...) {
+      deck.close();
+      std::error_code ec;
+      fs::remove(tmp, ec);
+      throw;
+    }
     deck.flush();
     if (!deck) {
       std::error_code ec;
@@ -208,6 +241,7 @@ sheetgen::CcxDeckMap write_deck(const sheetgen::PartModel& model, const ExportCc
     std::printf("wrote %s: %d nodes, %d %s elements, %zu rivets clamped, load at node %d\n", a.out.c_str(),
                 map.node_count, map.element_count, a.element_type.c_str(), model.rivets.size(),
                 map.ref_node.empty() ? -1 : map.ref_node.back());
+    std::printf("steps: %s\n", steps_summary(model.model, options).c_str());
   }
   fs::rename(tmp, out);
   return map;
@@ -419,6 +453,10 @@ CLI::App* add_export_ccx_command(CLI::App& app, ExportCcxArgs& a) {
       ->check(CLI::IsMember({"S4", "S8R"}));
   ccx->add_flag("--kirchhoff", a.kirchhoff,
                 "with --solve: solve with DKT (no transverse shear) instead of the default DKMT, for studies");
+  ccx->add_option("--buckle", a.buckle,
+                  "load case of the *BUCKLE step: its name or index from 0 (default: the first case); none: no *BUCKLE");
+  ccx->add_option("--modes", a.modes, "eigenfrequencies of the *FREQUENCY step (default 3); 0: no *FREQUENCY")
+      ->check(CLI::Range(0, 1000));
   return ccx;
 }
 
