@@ -347,6 +347,17 @@ void check_envelope_used(const JsonNode& root, const Problem& p) {
     root.at("load_cases").fail("applies to loads with a 'mass' (kg) and no load has one; give the boxes their mass");
 }
 
+// Whether the file asks for the checks beyond one static case: it uses the
+// envelope format or names a buckling or frequency floor.
+bool uses_envelope(const JsonNode& root) {
+  if (root.has("load_cases")) return true;
+  if (auto r = root.find("requirements"); r && (r->has("min_buckling_factor") || r->has("min_frequency_hz"))) return true;
+  const JsonNode loads = root.at("loads");
+  for (size_t i = 0; i < loads.size(); ++i)
+    if (loads.at(i).has("mass") || loads.at(i).has("cases")) return true;
+  return false;
+}
+
 // The buckling floor defaults to the safety factor read just before it.
 void parse_requirements(const JsonNode& root, Requirements& req) {
   auto r = root.find("requirements");
@@ -526,6 +537,7 @@ Problem parse_problem(const std::string& json_text, const std::string& source, c
   parse_loads(root, p);
   check_envelope_used(root, p);
   check_scale(root, p);
+  p.requirements.eigen_checks = uses_envelope(root);
   return p;
 }
 

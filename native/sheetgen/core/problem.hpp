@@ -79,6 +79,12 @@ struct Requirements {
   // -; the reader's default is safety_factor: no buckling below ultimate load.
   double min_buckling_factor = 1.5;
   std::optional<double> min_frequency_hz;  // Hz, first natural frequency floor; none by default
+  // Whether the buckling and frequency checks apply: the file uses the
+  // envelope format (a load's mass or cases, or load_cases) or names
+  // min_buckling_factor or min_frequency_hz. A file with one force per load
+  // and neither keeps the checks it was written for, so it solves as before
+  // (docs/problem-format.md "Load cases").
+  bool eigen_checks = false;
 
   // Compliance limit for a load with force magnitude |F| (N), J.
   double compliance_limit(double force_magnitude) const;

@@ -202,6 +202,22 @@ TEST(LoadCases, BucklingFloorDefaultsToTheSafetyFactor) {
   EXPECT_EQ(p.requirements.min_frequency_hz, 25.0);
 }
 
+// The buckling and frequency checks apply to a file that uses the envelope
+// format or names a floor; a one-force file keeps the checks it had.
+TEST(LoadCases, EigenChecksOnlyWhereTheFileAsksForThem) {
+  json j = base_problem();
+  EXPECT_FALSE(parse(j).requirements.eigen_checks);
+  json with_floor = j;
+  with_floor["requirements"] = {{"min_buckling_factor", 1.5}};
+  EXPECT_TRUE(parse(with_floor).requirements.eigen_checks);
+  json with_frequency = j;
+  with_frequency["requirements"] = {{"min_frequency_hz", 30}};
+  EXPECT_TRUE(parse(with_frequency).requirements.eigen_checks);
+  json with_mass = j;
+  with_mass["loads"][0]["mass"] = 2.0;
+  EXPECT_TRUE(parse(with_mass).requirements.eigen_checks);
+}
+
 // An old file (one force, no mass) reads as before: the file's force and
 // moment, one case "design", no mass, centre of mass at the centroid, and the
 // defaults of the new requirements.
