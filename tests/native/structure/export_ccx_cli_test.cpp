@@ -78,8 +78,11 @@ TEST(ExportCcxCli, DeckEqualsTheLibraryModel) {
 
   const auto [code, out] = run("export-ccx '" + (dir / "result.json").string() + "' --load box --out '" + (dir / "deck.inp").string() + "'");
   ASSERT_EQ(code, 0) << out;
+  CcxExportOptions cli;  // export-ccx's defaults: *BUCKLE of the first case, 3 modes
+  cli.buckle_case = 0;
+  cli.frequency_modes = 3;
   std::ostringstream expected;
-  write_ccx_deck(build_part_model(p, 0, plate_geometry(part, rp)).model, expected);
+  write_ccx_deck(build_part_model(p, 0, plate_geometry(part, rp)).model, expected, cli);
   EXPECT_EQ(slurp(dir / "deck.inp"), expected.str());
   EXPECT_FALSE(fs::exists(dir / "deck.inp.tmp"));
 
@@ -91,7 +94,7 @@ TEST(ExportCcxCli, DeckEqualsTheLibraryModel) {
   PartModelOptions seven;
   seven.element_size = 7e-3;
   std::ostringstream expected7;
-  write_ccx_deck(build_part_model(p, 0, plate_geometry(part, rp), seven).model, expected7);
+  write_ccx_deck(build_part_model(p, 0, plate_geometry(part, rp), seven).model, expected7, cli);
   EXPECT_EQ(slurp(dir / "deck7.inp"), expected7.str());
   const StructuralResult ours = analyse_part(p, 0, plate_geometry(part, rp), seven);
   const auto at = out3.find("compliance ");
@@ -168,8 +171,11 @@ TEST(ExportCcxCli, SelfRivetTiesReachTheDeck) {
   ASSERT_EQ(code, 0) << out;
   PartModelOptions tied;
   tied.self_rivets = {tie};
+  CcxExportOptions cli;  // export-ccx's defaults: *BUCKLE of the first case, 3 modes
+  cli.buckle_case = 0;
+  cli.frequency_modes = 3;
   std::ostringstream expected, untied;
-  write_ccx_deck(build_part_model(p, 0, plate_geometry(part, rp), tied).model, expected);
+  write_ccx_deck(build_part_model(p, 0, plate_geometry(part, rp), tied).model, expected, cli);
   write_ccx_deck(build_part_model(p, 0, plate_geometry(part, rp)).model, untied);
   EXPECT_EQ(slurp(dir / "deck.inp"), expected.str());
   EXPECT_NE(expected.str(), untied.str());
