@@ -53,6 +53,10 @@ void analyse_candidate(const Problem& problem, int load_index, Candidate& c, dou
     PartModelOptions mo;
     mo.element_size = element_size;
     mo.self_rivets = c.self_rivets;
+    // Buckling and frequencies after the static cases pass: in the search only
+    // when the problem requires them; at the default mesh (the final check)
+    // always, so every answer reports them.
+    mo.eigen_checks = problem.requirements.eigen_checks || element_size <= 0;
     c.fem = analyse_part(problem, load_index, plate_geometry(c.part, realise(c.part)), mo, solver);
     c.analysed = true;
   } catch (const FemError& e) {

@@ -34,7 +34,7 @@ struct Candidate {
   std::vector<SelfRivetTie> self_rivets;  // gusset rivets (paper Sec. 5.2), tied in the FEM
   bool over_cost_bound = false;    // geometry ok, but not analysed: dearer than the valid parts kept
   bool screened_out = false;       // analysed on the screening mesh only, not among the best there (fem is that result)
-  bool valid() const { return geometry_ok && analysed && fem.stiff_enough && fem.strong_enough; }
+  bool valid() const { return geometry_ok && analysed && fem.passes(); }
 };
 
 // Evaluates one subset (exposed for tests): assembly, validity, flat pattern,

@@ -50,7 +50,34 @@ double violation(const Candidate& c, const Problem& problem) {
   if (!c.analysed) return std::numeric_limits<double>::infinity();
   double v = std::max(0.0, c.fem.compliance / c.fem.compliance_limit - 1.0);
   v += std::max(0.0, problem.requirements.min_margin_of_safety - c.fem.margin_of_safety);
+  // The eigen checks, when they ran: how far below the floors, relative.
+  const EnvelopeResult& env = c.fem.envelope;
+  if (env.eigen_checked && !c.fem.stable_enough)
+    v += std::max(0.0, problem.requirements.min_buckling_factor / env.buckling_factor - 1.0);
+  if (env.eigen_checked && !c.fem.frequency_ok && !env.frequencies_hz.empty())
+    v += std::max(0.0, *problem.requirements.min_frequency_hz / env.frequencies_hz.front() - 1.0);
   return v;
+}
+
+// The name of the case that governs stiffness (or strength).
+std::string governing_name(const StructuralResult& fem, bool stiffness) {
+  const int k = stiffness ? fem.envelope.governing_stiffness : fem.envelope.governing_strength;
+  return k >= 0 ? fem.envelope.cases[k].name : std::string("design");
+}
+
+// The failed eigen checks of an analysed candidate, as a clause of a sentence ("" when none).
+std::string eigen_failure(const StructuralResult& fem, const Requirements& req) {
+  std::ostringstream why;
+  const EnvelopeResult& env = fem.envelope;
+  // The eigen checks run only on parts that pass every static case, so these
+  // are the candidate's only failures.
+  if (!fem.stable_enough)
+    why << " buckles in case '" << env.cases[env.governing_buckling].name << "' at " << env.buckling_factor
+        << " times its load, below the required " << req.min_buckling_factor;
+  if (!fem.frequency_ok && !env.frequencies_hz.empty())
+    why << (fem.stable_enough ? "" : " and") << " has its first natural frequency at " << env.frequencies_hz.front()
+        << " Hz, below the floor " << *req.min_frequency_hz << " Hz";
+  return why.str();
 }
 
 // The beam's rank: cost times how far off the limits, squared (lower is better).
@@ -361,12 +388,14 @@ void BeamSearch::evaluate_variants(int level, std::vector<Candidate>& variants, 
   }
 }
 
-// Self-riveting where the margin of safety passes but compliance does not.
+// Self-riveting where the margin of safety passes but compliance or buckling
+// does not: a gusset stiffens and braces the sheet.
 void BeamSearch::try_self_rivets(int level, const std::vector<int>& beam) {
   std::vector<Candidate> variants;
   for (int i : beam) {
     const Candidate& c = all_[i];
-    if (!c.fem.strong_enough || c.fem.stiff_enough || !c.self_rivets.empty()) continue;
+    const bool stiff_and_stable = c.fem.stiff_enough && c.fem.stable_enough;
+    if (!c.fem.strong_enough || stiff_and_stable || !c.self_rivets.empty()) continue;
     for (Candidate& v : self_rivet_variants(problem_, c)) variants.push_back(std::move(v));
   }
   evaluate_variants(level, variants, "self-rivet", result_.self_rivet_candidates);
@@ -454,11 +483,12 @@ std::string BeamSearch::failure_reason() const {
     why << "the best candidate (" << c.segments.size() << " segments, " << c.area * 1e4 << " cm^2, " << c.bends
         << " bends)";
     if (!c.fem.stiff_enough)
-      why << " has compliance " << c.fem.compliance << " J over the limit " << c.fem.compliance_limit << " J by "
+      why << " has compliance " << c.fem.compliance << " J in case '" << governing_name(c.fem, true) << "' over the limit " << c.fem.compliance_limit << " J by "
           << percent(c.fem.compliance / c.fem.compliance_limit - 1.0) << " (deflection along the force " << c.fem.deflection_along_force * 1e3 << " mm)";
     if (!c.fem.strong_enough)
       why << (c.fem.stiff_enough ? "" : " and") << " has margin of safety " << c.fem.margin_of_safety << " below the required "
           << problem_.requirements.min_margin_of_safety << " (max von Mises " << c.fem.max_von_mises * 1e-6 << " MPa)";
+    why << eigen_failure(c.fem, problem_.requirements);
   }
   return why.str();
 }

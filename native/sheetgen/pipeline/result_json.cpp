@@ -1,5 +1,7 @@
 #include "sheetgen/pipeline/result_json.hpp"
 
+#include <cmath>
+
 #include "sheetgen/part/exports.hpp"
 
 namespace sheetgen {
@@ -9,6 +11,33 @@ namespace {
 using nlohmann::json;
 
 json v3(const Vec3& p) { return json::array({p.x(), p.y(), p.z()}); }
+
+// A number that may be +inf (no buckling possible) or absent: null in JSON.
+json finite_or_null(double v) { return std::isfinite(v) ? json(v) : json(nullptr); }
+
+// Every case of the load with its checks, the governing case of each check,
+// the buckling factor and the first frequencies (docs/pipeline.md "result.json").
+json envelope_json(const EnvelopeResult& env, const Requirements& req) {
+  json cases = json::array();
+  for (const CaseResult& c : env.cases)
+    cases.push_back({{"name", c.name}, {"force_n", v3(c.force)}, {"compliance", c.compliance},
+                     {"compliance_limit", c.compliance_limit}, {"deflection_along_force_m", c.deflection_along_force},
+                     {"deflection_m", c.deflection}, {"max_von_mises_pa", c.max_von_mises},
+                     {"margin_of_safety", c.margin_of_safety},
+                     {"buckling_factor", c.buckling_checked ? finite_or_null(c.buckling_factor) : json(nullptr)}});
+  auto name = [&](int k) { return k >= 0 ? json(env.cases[k].name) : json(nullptr); };
+  json e = {{"cases", cases},
+            {"governing", {{"stiffness", name(env.governing_stiffness)}, {"strength", name(env.governing_strength)},
+                           {"buckling", name(env.governing_buckling)}}},
+            {"eigen_checked", env.eigen_checked},
+            {"buckling_factor", env.eigen_checked ? finite_or_null(env.buckling_factor) : json(nullptr)},
+            {"frequencies_hz", env.frequencies_hz},
+            {"box_mass_kg", env.box_mass},
+            {"required", {{"checked", req.eigen_checks},
+                          {"min_buckling_factor", req.min_buckling_factor},
+                          {"min_frequency_hz", req.min_frequency_hz ? json(*req.min_frequency_hz) : json(nullptr)}}}};
+  return e;
+}
 
 // The part of a load that has one (valid or the closest candidate): size,
 // cost, FEM at the default mesh, tabs, rivets and flat pattern.
@@ -26,6 +55,7 @@ void add_part_fields(json& p, const Problem& problem, const LoadOutcome& o) {
     p["max_von_mises_pa"] = c.fem.max_von_mises;
     p["margin_of_safety"] = c.fem.margin_of_safety;
     p["fem_elements"] = c.fem.elements;
+    p["envelope"] = envelope_json(c.fem.envelope, problem.requirements);
   }
   p["tabs"] = part_json(c.part, o.realised);
   json rivets = json::array();

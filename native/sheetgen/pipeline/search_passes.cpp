@@ -23,6 +23,28 @@ bool cancel_requested(const GenerateProgress* progress) { return progress && pro
 
 ComposeProgress* compose_progress(GenerateProgress* progress) { return progress ? &progress->compose : nullptr; }
 
+// Why the cheapest part failed at the default mesh: the check, its case and by how much.
+std::string final_check_failure(const Candidate& c, const Requirements& req) {
+  const StructuralResult& f = c.fem;
+  const EnvelopeResult& env = f.envelope;
+  char buf[512];
+  if (!f.stiff_enough || !f.strong_enough) {
+    std::snprintf(buf, sizeof buf,
+                  "at the default mesh the cheapest part misses its limits (compliance %.6g J in case '%s', limit %.6g J; "
+                  "MS %.4g in case '%s')",
+                  f.compliance, env.cases[env.governing_stiffness].name.c_str(), f.compliance_limit, f.margin_of_safety,
+                  env.cases[env.governing_strength].name.c_str());
+  } else if (!f.stable_enough) {
+    std::snprintf(buf, sizeof buf,
+                  "at the default mesh the cheapest part buckles in case '%s' at %.4g times its load (required %.4g)",
+                  env.cases[env.governing_buckling].name.c_str(), env.buckling_factor, req.min_buckling_factor);
+  } else {
+    std::snprintf(buf, sizeof buf, "at the default mesh the cheapest part's first natural frequency is %.4g Hz (floor %.4g Hz)",
+                  env.frequencies_hz.empty() ? 0.0 : env.frequencies_hz.front(), req.min_frequency_hz.value_or(0.0));
+  }
+  return buf;
+}
+
 // The final check at the default mesh, down a list of valid candidates,
 // cheapest first: the first that passes is the answer. Remembers the parts it
 // rejected, so the list of a rerun skips them.
@@ -51,9 +73,7 @@ struct FinalCheck {
         return;
       }
       failed.insert({c.segments, c.cost});
-      if (reason.empty() && checked.analysed)
-        reason = "at the default mesh the cheapest part misses its limits (compliance " + std::to_string(checked.fem.compliance) +
-                 " J, limit " + std::to_string(checked.fem.compliance_limit) + " J, MS " + std::to_string(checked.fem.margin_of_safety) + ")";
+      if (reason.empty() && checked.analysed) reason = final_check_failure(checked, scene.requirements);
     }
   }
 };
@@ -132,7 +152,15 @@ bool closer(const Candidate& a, const Candidate& b, const Problem& scene) {
     const double stiff = c.fem.compliance_limit > 0 ? c.fem.compliance / c.fem.compliance_limit : 0.0;
     const double ms_req = scene.requirements.min_margin_of_safety;
     const double strong = (1.0 + ms_req) / std::max(1e-12, 1.0 + c.fem.margin_of_safety);
-    return std::max(stiff, strong);
+    // The eigen checks, when they ran: the floor over the value (> 1 = failed).
+    const EnvelopeResult& env = c.fem.envelope;
+    double stable = 0, vibration = 0;
+    if (env.eigen_checked && scene.requirements.eigen_checks) {
+      stable = scene.requirements.min_buckling_factor / std::max(1e-12, env.buckling_factor);
+      if (scene.requirements.min_frequency_hz && !env.frequencies_hz.empty())
+        vibration = *scene.requirements.min_frequency_hz / std::max(1e-12, env.frequencies_hz.front());
+    }
+    return std::max({stiff, strong, stable, vibration});
   };
   return over(a) < over(b);
 }

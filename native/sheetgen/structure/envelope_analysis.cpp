@@ -1,5 +1,6 @@
 #include "sheetgen/structure/envelope_analysis.hpp"
 
+#include <algorithm>
 #include <chrono>
 
 #include "sheetgen/fem/buckling.hpp"
@@ -42,11 +43,47 @@ void find_governing_cases(EnvelopeResult& res) {
     if (res.governing_stiffness < 0 || ratio(c) > ratio(res.cases[res.governing_stiffness])) res.governing_stiffness = k;
     if (res.governing_strength < 0 || c.margin_of_safety < res.cases[res.governing_strength].margin_of_safety)
       res.governing_strength = k;
-    if (c.buckling_checked && c.buckling_factor < res.buckling_factor) {
-      res.buckling_factor = c.buckling_factor;
-      res.governing_buckling = k;
-    }
   }
+}
+
+// The buckling factor of every case (each solve skips a case that compresses
+// nothing), the governing one, and its mode when kept.
+void buckle_every_case(const ShellModel& m, const std::vector<ShellResult>& statics, const ShellSolveOptions& so,
+                       const EnvelopeOptions& options, ShellSolver& solver, EnvelopeResult& res) {
+  const auto t0 = Clock::now();
+  std::vector<std::vector<Vector6d>> modes(statics.size());
+  for (size_t k = 0; k < statics.size(); ++k) {
+    const BucklingResult b = analyse_buckling(solver, m, statics[k], so);
+    res.cases[k].buckling_checked = true;
+    res.cases[k].buckling_factor = b.factor();
+    if (b.factor() < res.buckling_factor) {
+      res.buckling_factor = b.factor();
+      res.governing_buckling = static_cast<int>(k);
+    }
+    if (options.keep_mode_shapes && !b.mode_shapes.empty()) modes[k] = b.mode_shapes.front();
+  }
+  if (options.keep_mode_shapes && res.governing_buckling >= 0) res.buckling_mode = modes[res.governing_buckling];
+  res.buckling_seconds = seconds_since(t0);
+}
+
+void vibrate(const ShellModel& m, const ShellSolveOptions& so, const EnvelopeOptions& options, ShellSolver& solver,
+             EnvelopeResult& res) {
+  VibrationOptions vo;
+  vo.modes = options.frequencies;
+  const VibrationResult v = analyse_vibration(solver, m, so, vo);
+  res.frequencies_hz = v.frequencies_hz;
+  res.sheet_mass = v.sheet_mass;
+  res.box_mass = v.point_mass;
+  res.vibration_seconds = v.seconds;
+  if (options.keep_mode_shapes && !v.mode_shapes.empty()) res.vibration_mode = v.mode_shapes.front();
+}
+
+// The eigen checks against the requirements, where the problem asks for them.
+void judge_eigen_checks(const Requirements& req, const EnvelopeOptions& options, EnvelopeResult& res) {
+  if (!req.eigen_checks) return;
+  if (options.buckling) res.stable_enough = res.buckling_factor >= req.min_buckling_factor;
+  if (req.min_frequency_hz)
+    res.frequency_ok = !res.frequencies_hz.empty() && res.frequencies_hz.front() >= *req.min_frequency_hz;
 }
 
 }  // namespace
@@ -75,29 +112,17 @@ EnvelopeResult analyse_envelope(const Problem& problem, const PartModel& part, c
   res.dofs = statics.front().reduced_dofs;
   for (size_t k = 0; k < cases.size(); ++k) res.cases.push_back(case_result(problem, load, cases[k], statics[k]));
 
-  t0 = Clock::now();
-  std::vector<std::vector<Vector6d>> modes(cases.size());
-  if (options.buckling)
-    for (size_t k = 0; k < cases.size(); ++k) {
-      const BucklingResult b = analyse_buckling(solver, m, statics[k], so);
-      res.cases[k].buckling_checked = true;
-      res.cases[k].buckling_factor = b.factor();
-      if (options.keep_mode_shapes && !b.mode_shapes.empty()) modes[k] = b.mode_shapes.front();
-    }
-  res.buckling_seconds = seconds_since(t0);
   find_governing_cases(res);
-  if (options.keep_mode_shapes && res.governing_buckling >= 0) res.buckling_mode = modes[res.governing_buckling];
-
-  if (options.frequencies > 0) {
-    VibrationOptions vo;
-    vo.modes = options.frequencies;
-    const VibrationResult v = analyse_vibration(solver, m, so, vo);
-    res.frequencies_hz = v.frequencies_hz;
-    res.sheet_mass = v.sheet_mass;
-    res.box_mass = v.point_mass;
-    res.vibration_seconds = v.seconds;
-    if (options.keep_mode_shapes && !v.mode_shapes.empty()) res.vibration_mode = v.mode_shapes.front();
+  const bool static_pass = std::all_of(res.cases.begin(), res.cases.end(),
+                                       [](const CaseResult& c) { return c.stiff_enough && c.strong_enough; });
+  if (options.eigen_only_if_static_passes && !static_pass) {
+    res.seconds = seconds_since(start);
+    return res;
   }
+  res.eigen_checked = options.buckling || options.frequencies > 0;
+  if (options.buckling) buckle_every_case(m, statics, so, options, solver, res);
+  if (options.frequencies > 0) vibrate(m, so, options, solver, res);
+  judge_eigen_checks(problem.requirements, options, res);
   res.seconds = seconds_since(start);
   return res;
 }

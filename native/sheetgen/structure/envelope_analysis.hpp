@@ -9,6 +9,7 @@
 
 #include "sheetgen/core/problem.hpp"
 #include "sheetgen/fem/shell_model.hpp"
+#include "sheetgen/structure/envelope_result.hpp"
 #include "sheetgen/structure/part_model.hpp"
 
 namespace sheetgen {
@@ -17,40 +18,10 @@ struct EnvelopeOptions {
   bool buckling = true;   // the eigen solve of every compressive case
   int frequencies = 3;    // natural frequencies wanted (0: none)
   bool keep_mode_shapes = false;  // the governing buckling mode and the first vibration mode, per node
-};
-
-struct CaseResult {
-  std::string name;
-  Vec3 force = Vec3::Zero();       // N, world
-  double compliance = 0;           // J, f^T u
-  double compliance_limit = 0;     // J, this case's (requirements and its own max_deflection)
-  double deflection = 0;           // m, |translation| of the load centroid
-  double deflection_along_force = 0;  // m, u . F/|F|
-  double max_von_mises = 0;        // Pa, by the stress rule
-  double margin_of_safety = 0;     // -
-  bool stiff_enough = false;       // compliance <= compliance_limit
-  bool strong_enough = false;      // MS >= required
-  // -, lowest buckling load factor (+inf when the case compresses nothing, or
-  // when buckling was not asked for: see buckling_checked).
-  double buckling_factor = std::numeric_limits<double>::infinity();
-  bool buckling_checked = false;
-};
-
-struct EnvelopeResult {
-  std::vector<CaseResult> cases;
-  // Index into cases of the case that governs each check: the largest C/C_max,
-  // the lowest MS, the lowest buckling factor (-1: none).
-  int governing_stiffness = -1, governing_strength = -1, governing_buckling = -1;
-  double buckling_factor = std::numeric_limits<double>::infinity();  // -, min over the cases
-  std::vector<double> frequencies_hz;                                 // ascending
-  double box_mass = 0, sheet_mass = 0;                                // kg
-  std::vector<Vector6d> buckling_mode, vibration_mode;               // #N, when kept
-  int elements = 0, dofs = 0;
-  double static_seconds = 0, buckling_seconds = 0, vibration_seconds = 0, seconds = 0;
-
-  // The worst C/C_max and lowest MS over the cases.
-  double worst_compliance_ratio() const;
-  double lowest_margin_of_safety() const;
+  // Skip buckling and frequencies when a static case already fails (stiffness
+  // or strength): the search's cheap checks first, the eigen solves only on
+  // parts that pass them.
+  bool eigen_only_if_static_passes = false;
 };
 
 // Builds the part model of load `load_index` (its cases and box mass from the

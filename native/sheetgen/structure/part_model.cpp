@@ -1,5 +1,7 @@
 #include "sheetgen/structure/part_model.hpp"
 
+#include "sheetgen/structure/envelope_analysis.hpp"
+
 #include <algorithm>
 #include <array>
 #include <chrono>
@@ -271,21 +273,29 @@ StructuralResult analyse_part(const Problem& problem, int load_index, const Plat
                               const PartModelOptions& options, ShellSolver* solver) {
   const auto start = std::chrono::steady_clock::now();
   const PartModel pm = build_part_model(problem, load_index, geometry, options);
-  const ShellSolveOptions so = part_solve_options(problem, options.element);
-  const ShellResult r = solver ? solver->solve(pm.model, so) : solve_shell(pm.model, so);
+  EnvelopeOptions eo;
+  const bool eigen = options.eigen_checks;
+  eo.buckling = eigen;
+  eo.frequencies = eigen ? 3 : 0;
+  eo.eigen_only_if_static_passes = true;
+  ShellSolver own;
   StructuralResult s;
-  s.compliance = r.compliance;
-  s.deflection = r.load_deflection;
-  const Vec3& force = problem.loads[load_index].force;
-  if (r.load_node >= 0 && force.norm() > 0)
-    s.deflection_along_force = r.displacements[r.load_node].head<3>().dot(force.normalized());
-  s.max_von_mises = r.max_von_mises;
-  s.margin_of_safety = r.margin_of_safety;
-  s.compliance_limit = problem.requirements.compliance_limit(problem.loads[load_index].force.norm());
-  s.stiff_enough = s.compliance <= s.compliance_limit;
-  s.strong_enough = s.margin_of_safety >= problem.requirements.min_margin_of_safety;
-  s.elements = static_cast<int>(pm.model.triangles.size());
-  s.dofs = r.reduced_dofs;
+  s.envelope = analyse_envelope(problem, pm, eo, options.element, solver ? *solver : own);
+  const EnvelopeResult& env = s.envelope;
+  const CaseResult& stiff = env.cases[env.governing_stiffness];
+  const CaseResult& strong = env.cases[env.governing_strength];
+  s.compliance = stiff.compliance;
+  s.compliance_limit = stiff.compliance_limit;
+  s.deflection = stiff.deflection;
+  s.deflection_along_force = stiff.deflection_along_force;
+  s.max_von_mises = strong.max_von_mises;
+  s.margin_of_safety = strong.margin_of_safety;
+  s.stiff_enough = std::all_of(env.cases.begin(), env.cases.end(), [](const CaseResult& c) { return c.stiff_enough; });
+  s.strong_enough = std::all_of(env.cases.begin(), env.cases.end(), [](const CaseResult& c) { return c.strong_enough; });
+  s.stable_enough = env.stable_enough;
+  s.frequency_ok = env.frequency_ok;
+  s.elements = env.elements;
+  s.dofs = env.dofs;
   s.rivets = static_cast<int>(pm.rivets.size());
   s.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return s;

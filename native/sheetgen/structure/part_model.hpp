@@ -12,6 +12,7 @@
 #include "sheetgen/fem/shell_model.hpp"
 #include "sheetgen/part/part.hpp"
 #include "sheetgen/part/realisation.hpp"
+#include "sheetgen/structure/envelope_result.hpp"
 
 namespace sheetgen {
 
@@ -40,6 +41,10 @@ struct PartModelOptions {
   double element_size = 0;                // m; <= 0: default_element_size (docs/fem.md)
   std::vector<SelfRivetTie> self_rivets;  // tied after meshing
   ShellElementOptions element;            // DKMT (transverse shear) by default
+  // analyse_part(): buckling of every case and the first three frequencies
+  // too, when every static case passes. They decide stable_enough and
+  // frequency_ok only where the problem asks (Requirements::eigen_checks).
+  bool eigen_checks = false;
 };
 
 struct PartModel {
@@ -68,22 +73,33 @@ std::vector<std::vector<Vec3>> bend_keep_out(const PlateGeometry& geometry, int 
 PartModel build_part_model(const Problem& problem, int load_index, const PlateGeometry& geometry,
                            const PartModelOptions& options = {});
 
+// A part's answer to its load: over every case of the load (one for a
+// one-force load), the numbers of the case that governs each check.
 struct StructuralResult {
+  // Of the stiffness-governing case (largest C / C_max):
   double compliance = 0;        // J, f^T u
   double deflection = 0;        // m, |translation| of the load centroid
   // m, the load centroid's translation along the force, u . F/|F|: what a
   // max_deflection requirement bounds (C = F . u when there is no moment). A
   // part may swing sideways more than this without breaking the requirement.
   double deflection_along_force = 0;
+  double compliance_limit = 0;  // J, from the requirements
+  // Of the strength-governing case (lowest MS):
   double max_von_mises = 0;     // Pa, by the stress rule of docs/fem.md
   double margin_of_safety = 0;  // -, Fty / (SF sigma) - 1
-  double compliance_limit = 0;  // J, from the requirements
-  bool stiff_enough = false;    // compliance <= limit
-  bool strong_enough = false;   // MS >= required
+  bool stiff_enough = false;    // every case: compliance <= its limit
+  bool strong_enough = false;   // every case: MS >= required
+  // The buckling and frequency checks (eigen_checks in the options): true
+  // when they pass, are not required, or were not run.
+  bool stable_enough = true;
+  bool frequency_ok = true;
+  EnvelopeResult envelope;      // every case, governing cases, buckling factor, frequencies
   int elements = 0;
   int dofs = 0;                 // reduced unknowns
   int rivets = 0;
   double seconds = 0;           // build + solve
+
+  bool passes() const { return stiff_enough && strong_enough && stable_enough && frequency_ok; }
 };
 
 // The solve options analyse_part() uses for this problem: its safety factor,

@@ -1,0 +1,102 @@
+// The envelope analysis of three real parts against CalculiX on the decks
+// export-ccx writes (docs/fem.md "Envelope analysis"): the corner sample's
+// part, the avionics bay's transponder part and its gps_receiver part (one
+// self-rivet), each with its box's mass (the design force / 9 g, the 9 g
+// downward stand-in it was designed for) and the FAR 25.561 envelope. ccx
+// runs S8R (quadratic shells, the accuracy reference of docs/fem.md; S4 on
+// split triangles is a few % too stiff) on the same mesh. Full tier (ccx).
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+#include "sheetgen/core/load_cases.hpp"
+#include "sheetgen/fem/ccx_export.hpp"
+#include "sheetgen/structure/envelope_analysis.hpp"
+
+namespace sheetgen {
+namespace {
+
+namespace fs = std::filesystem;
+
+std::string read_fixture(const std::string& name) {
+  std::ifstream in(std::string(SHEETGEN_SOURCE_DIR) + "/tests/native/structure/data/" + name + ".json");
+  std::stringstream text;
+  text << in.rdbuf();
+  return text.str();
+}
+
+// The scene's problem with load `load` given the mass its design force stands
+// for and the FAR 25.561 envelope after its design case (x forward, z up).
+Problem envelope_problem(const std::string& scene, const std::string& load, int& index) {
+  Problem p = load_problem(std::string(SHEETGEN_SOURCE_DIR) + "/sample_scenes/" + scene + "/problem.json");
+  index = -1;
+  for (size_t i = 0; i < p.loads.size(); ++i)
+    if (p.loads[i].name == load) index = static_cast<int>(i);
+  Load& l = p.loads.at(index);
+  const double mass = l.force.norm() / (9.0 * kStandardGravity);
+  l.mass = mass;
+  l.center_of_mass = l.center;
+  l.inertia = uniform_box_inertia(mass, l.size, l.rotation);
+  InertiaEnvelope env;
+  env.factors = far25_561_factors();
+  for (const InertiaFactor& f : env.factors) l.cases.push_back(inertia_case(env, f, mass));
+  return p;
+}
+
+void compare_with_calculix(const std::string& scene, const std::string& load, const std::string& fixture) {
+  int index = -1;
+  const Problem p = envelope_problem(scene, load, index);
+  const std::string text = read_fixture(fixture);
+  PartModelOptions mo;
+  mo.self_rivets = self_rivet_ties_from_json(text, fixture);
+  const PartModel pm = build_part_model(p, index, plate_geometry_from_json(text, fixture), mo);
+  ShellSolver solver;
+  EnvelopeOptions eo;
+  eo.frequencies = 1;
+  const EnvelopeResult ours = analyse_envelope(p, pm, eo, mo.element, solver);
+  ASSERT_GE(ours.governing_buckling, 0);
+
+  const fs::path dir = fs::temp_directory_path() / ("sheetgen_envelope_ccx_" + fixture);
+  fs::create_directories(dir);
+  CcxExportOptions co;
+  co.element_type = "S8R";
+  co.buckle_case = ours.governing_buckling;
+  co.buckling_factors = 1;
+  co.frequency_modes = 1;
+  const CcxEnvelope ccx = solve_envelope_with_ccx(pm.model, dir.string(), "envelope", "ccx", co);
+  fs::remove_all(dir);
+
+  ASSERT_EQ(ccx.cases.size(), ours.cases.size());
+  for (size_t k = 0; k < ours.cases.size(); ++k) {
+    std::printf("%s %-15s C ours %.6g J, ccx %.6g J (%+.2f %%)\n", fixture.c_str(), ours.cases[k].name.c_str(),
+                ours.cases[k].compliance, ccx.cases[k].compliance,
+                100 * (ours.cases[k].compliance / ccx.cases[k].compliance - 1));
+    EXPECT_NEAR(ours.cases[k].compliance / ccx.cases[k].compliance, 1.0, 0.03) << ours.cases[k].name;
+  }
+  std::printf("%s buckling (%s) ours %.5g, ccx %.5g (%+.2f %%); f1 ours %.5g Hz, ccx %.5g Hz (%+.2f %%); ccx %.0f s\n",
+              fixture.c_str(), ours.cases[ours.governing_buckling].name.c_str(), ours.buckling_factor,
+              ccx.buckling_factors.at(0), 100 * (ours.buckling_factor / ccx.buckling_factors.at(0) - 1),
+              ours.frequencies_hz.at(0), ccx.frequencies_hz.at(0),
+              100 * (ours.frequencies_hz.at(0) / ccx.frequencies_hz.at(0) - 1), ccx.wall_seconds);
+  EXPECT_NEAR(ours.buckling_factor / ccx.buckling_factors.at(0), 1.0, 0.05);
+  EXPECT_NEAR(ours.frequencies_hz.at(0) / ccx.frequencies_hz.at(0), 1.0, 0.05);
+}
+
+TEST(EnvelopeCalculix, CornerPartAgreesWithCalculix) {
+  compare_with_calculix("corner", "avionics_box", "corner_avionics_box");
+}
+
+TEST(EnvelopeCalculix, BayTransponderPartAgreesWithCalculix) {
+  compare_with_calculix("avionics_bay", "transponder", "bay_transponder");
+}
+
+TEST(EnvelopeCalculix, SelfRivetedBayPartAgreesWithCalculix) {
+  compare_with_calculix("avionics_bay", "gps_receiver", "bay_gps_receiver_self_rivet");
+}
+
+}  // namespace
+}  // namespace sheetgen
