@@ -7,12 +7,21 @@
 //   BM_Static6     - the six cases on one factorisation (fresh solver);
 //   BM_Buckling    - one buckling factor of the forward case, the factor of K reused;
 //   BM_Frequencies - the first three natural frequencies, the factor reused;
-//   BM_Envelope    - all of it from a fresh solver: six cases, one buckling factor, three frequencies.
+//   BM_Envelope    - all of it from a fresh solver: six cases, one buckling factor, three frequencies;
+//   BM_CcxEnvelope - CalculiX (ccx -i, S4, its default threads) on the deck export-ccx writes of the
+//                    same model: six *STATIC steps, *BUCKLE (1 factor) of the forward case,
+//                    *FREQUENCY (3), wall time, with counter ratio = ccx / BM_Envelope's time.
 // Argument: mesh (0: h = 2.5 mm, 1: 1.25 mm, 2: 0.8 mm).
 #include <benchmark/benchmark.h>
+#include <stdlib.h>
+
+#include <chrono>
+#include <filesystem>
+#include <string>
 
 #include "../tests/native/fem/fem_brackets.hpp"
 #include "sheetgen/fem/buckling.hpp"
+#include "sheetgen/fem/ccx_export.hpp"
 #include "sheetgen/fem/vibration.hpp"
 
 namespace {
@@ -98,6 +107,49 @@ void BM_Envelope(benchmark::State& state) {
   }
 }
 
+// Our whole envelope, one fresh solver, seconds.
+double envelope_seconds(const ShellModel& m) {
+  const auto t0 = std::chrono::steady_clock::now();
+  ShellSolver solver;
+  const std::vector<ShellResult> cases = solver.solve_cases(m);
+  benchmark::DoNotOptimize(analyse_buckling(solver, m, cases.front()).factors.data());
+  benchmark::DoNotOptimize(analyse_vibration(solver, m).frequencies_hz.data());
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+}
+
+void BM_CcxEnvelope(benchmark::State& state) {
+  const ShellModel m = envelope_model(static_cast<int>(state.range(0)));
+  std::string dir = (std::filesystem::temp_directory_path() / "sheetgen_bench_env_XXXXXX").string();
+  if (!mkdtemp(dir.data())) {
+    state.SkipWithError("cannot create a temp dir");
+    return;
+  }
+  CcxExportOptions o;
+  o.buckle_case = 0;
+  o.buckling_factors = 1;
+  o.frequency_modes = 3;
+  const double ours = envelope_seconds(m);
+  double ccx = 0;
+  CcxEnvelope e;
+  for (auto _ : state) {
+    try {
+      e = solve_envelope_with_ccx(m, dir, "bench", "ccx", o);
+    } catch (const std::exception& ex) {
+      state.SkipWithError(ex.what());
+      break;
+    }
+    state.SetIterationTime(e.wall_seconds);
+    ccx = e.wall_seconds;
+  }
+  std::filesystem::remove_all(dir);
+  if (ccx > 0) {
+    state.counters["ours_ms"] = ours * 1e3;
+    state.counters["ratio"] = ccx / ours;
+    state.counters["ccx_buckling"] = e.buckling_factors.front();
+    state.counters["ccx_f1_hz"] = e.frequencies_hz.front();
+  }
+}
+
 }  // namespace
 
 BENCHMARK(BM_Static1)->DenseRange(0, 2)->Unit(benchmark::kMillisecond);
@@ -105,5 +157,6 @@ BENCHMARK(BM_Static6)->DenseRange(0, 2)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_Buckling)->DenseRange(0, 2)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_Frequencies)->DenseRange(0, 2)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_Envelope)->DenseRange(0, 2)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_CcxEnvelope)->DenseRange(0, 2)->UseManualTime()->Iterations(1)->Unit(benchmark::kMillisecond);
 
 BENCHMARK_MAIN();
