@@ -15,6 +15,7 @@
 #include "sheetgen/fem/fem_error.hpp"
 #include "sheetgen/pipeline/generate.hpp"
 #include "sheetgen/pipeline/output_files.hpp"
+#include "sheetgen/structure/envelope_analysis.hpp"
 #include "sheetgen/structure/part_model.hpp"
 
 #include <atomic>
@@ -264,6 +265,24 @@ void write_displacements_csv(const std::string& path, const sheetgen::PartModel&
   }
 }
 
+// --solve: every case of the deck, the buckling factor of every case and the
+// frequencies the deck asks for, by our FEM on the deck's mesh.
+void print_our_envelope(const sheetgen::Problem& problem, const sheetgen::PartModel& model,
+                        const sheetgen::ShellElementOptions& element, const ExportCcxArgs& a) {
+  sheetgen::EnvelopeOptions eo;
+  eo.frequencies = a.modes;
+  sheetgen::ShellSolver solver;
+  const sheetgen::EnvelopeResult env = sheetgen::analyse_envelope(problem, model, eo, element, solver);
+  for (const sheetgen::CaseResult& c : env.cases)
+    std::printf("ours: case %-16s compliance %.8g J (limit %.6g J), along F %.6g mm, MS %.4g, buckling factor %.6g\n",
+                c.name.c_str(), c.compliance, c.compliance_limit, c.deflection_along_force * 1e3, c.margin_of_safety,
+                c.buckling_factor);
+  std::printf("ours: frequencies");
+  for (double f : env.frequencies_hz) std::printf(" %.6g", f);
+  std::printf(" Hz (box %.4g kg, sheet %.4g kg); statics %.3f s, buckling %.3f s, vibration %.3f s\n", env.box_mass,
+              env.sheet_mass, env.static_seconds, env.buckling_seconds, env.vibration_seconds);
+}
+
 // --solve: the same model with our FEM, so both solvers see one mesh.
 void solve_ours(const sheetgen::Problem& problem, const sheetgen::PartModel& model, const sheetgen::CcxDeckMap& map,
                 const ExportCcxArgs& a) {
@@ -281,6 +300,7 @@ void solve_ours(const sheetgen::Problem& problem, const sheetgen::PartModel& mod
                 r.max_von_mises * 1e-6, c.x() * 1e3, c.y() * 1e3, c.z() * 1e3, r.margin_of_safety);
   }
   if (!a.displacements.empty()) write_displacements_csv(a.displacements, model, r, map);
+  print_our_envelope(problem, model, element, a);
 }
 
 int export_ccx(const ExportCcxArgs& a) {
