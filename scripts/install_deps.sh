@@ -19,6 +19,9 @@ PACKAGES=(
   blender calculix-ccx python3-ezdxf python3-shapely python3-matplotlib python3-pil
   # the solid reference model of tools/sheetgen_tools/solid_reference.py (OpenCASCADE + mesher)
   python3-gmsh
+  # sheetgen-farm (docs/farm.md): Dask distributed (scheduler, workers, client; pulls in python3-dask,
+  # python3-tornado), psutil (the farm test looks for solver processes) and the progress bar
+  python3-distributed python3-psutil python3-tqdm
   # screenshots of the Blender UI (scripts/make_screenshots.py)
   xvfb
   # function lengths of the C++ code (scripts/function_lengths.py)
