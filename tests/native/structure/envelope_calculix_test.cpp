@@ -47,9 +47,23 @@ Problem envelope_problem(const std::string& scene, const std::string& load, int&
   return p;
 }
 
+// The envelope's cases that CalculiX solves: design, forward 9 g, left 3 g and
+// down 6 g. The other three are -1/6, -1 and -1/2 times forward, left and
+// down: in a linear model C = F^T K^-1 F, so their compliances are those
+// cases' times 1/36, 1 and 1/4 exactly, in ccx as in ours (EnvelopeAnalysis
+// tests check ours case by case). Each ccx step refactors, so the three
+// mirrored steps would add half the run time and no information.
+std::vector<LoadCase> independent_cases(const Load& l) {
+  std::vector<LoadCase> kept;
+  for (const LoadCase& c : l.cases)
+    if (c.name == "design" || c.name == "forward 9 g" || c.name == "left 3 g" || c.name == "down 6 g") kept.push_back(c);
+  return kept;
+}
+
 void compare_with_calculix(const std::string& scene, const std::string& load, const std::string& fixture) {
   int index = -1;
-  const Problem p = envelope_problem(scene, load, index);
+  Problem p = envelope_problem(scene, load, index);
+  p.loads[index].cases = independent_cases(p.loads[index]);
   const std::string text = read_fixture(fixture);
   PartModelOptions mo;
   mo.self_rivets = self_rivet_ties_from_json(text, fixture);
