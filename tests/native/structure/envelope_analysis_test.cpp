@@ -36,6 +36,7 @@ TEST(EnvelopeAnalysis, EveryCaseEqualsTheSingleCaseAnalysisOfItsForce) {
   ASSERT_EQ(env.cases.size(), 7u);
   for (size_t k = 0; k < env.cases.size(); ++k) {
     Problem one = p;
+    one.loads[0].cases = {p.loads[0].cases[k]};
     one.loads[0].force = p.loads[0].cases[k].force;
     one.loads[0].moment = p.loads[0].cases[k].moment;
     const StructuralResult s = analyse_part(one, 0, g);
