@@ -46,6 +46,12 @@ void bind_problem(py::module_& m) {
       .def_readonly("faces", &RivetAreaSpec::faces)
       .def_readonly("area_m2", &RivetAreaSpec::area_m2);
 
+  py::class_<LoadCase>(m, "LoadCase")
+      .def_readonly("name", &LoadCase::name)
+      .def_readonly("force", &LoadCase::force, "N, world")
+      .def_readonly("moment", &LoadCase::moment, "N*m, world, about the centre of mass")
+      .def_readonly("max_deflection", &LoadCase::max_deflection, "m, or None");
+
   py::class_<Load>(m, "Load")
       .def_readonly("name", &Load::name)
       .def_readonly("center", &Load::center, "m")
@@ -53,7 +59,11 @@ void bind_problem(py::module_& m) {
       .def_property_readonly("rotation", [](const Load& l) { return Eigen::Vector4d(l.rotation.w(), l.rotation.x(), l.rotation.y(), l.rotation.z()); },
                              "quaternion (w, x, y, z)")
       .def_readonly("force", &Load::force, "N")
-      .def_readonly("moment", &Load::moment, "N*m");
+      .def_readonly("moment", &Load::moment, "N*m")
+      .def_readonly("mass", &Load::mass, "kg, or None")
+      .def_readonly("center_of_mass", &Load::center_of_mass, "m, world")
+      .def_readonly("inertia", &Load::inertia, "kg*m^2, 3 by 3, world, about the centre of mass")
+      .def_readonly("cases", &Load::cases, "every static case, in order (docs/problem-format.md \"Load cases\")");
 
   py::class_<Material>(m, "Material")
       .def_readonly("youngs_modulus", &Material::youngs_modulus, "Pa")
