@@ -196,7 +196,7 @@ class ProblemToScene(unittest.TestCase):
         p = corner_problem()
         p["requirments"] = {}
         self.assertEqual(self.errors(p)[0], "(top level): unknown field 'requirments' (expected one of: format, name, "
-                         "description, units, environment, rivet_areas, loads, material, requirements, manufacturing, "
+                         "description, units, environment, rivet_areas, loads, load_cases, material, requirements, manufacturing, "
                          "search)")
         p = corner_problem()
         p["rivet_areas"][1]["faces"] = [0, 9]

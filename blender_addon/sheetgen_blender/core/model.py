@@ -18,20 +18,44 @@ class MeshData:
     triangles: List[Sequence[int]]             # #F by 3, 0-based vertex indices
     face_areas: Optional[List[int]] = None     # #F: 0 = no rivet area, k = area id (local to this mesh)
     area_names: Dict[int, str] = field(default_factory=dict)  # area id -> rivet area name (unique in the problem)
+    # area id -> its 1-based position in an imported problem's rivet_areas: written in that order again, so the
+    # solver numbers the areas as the file did (result.json's rivet_area); areas without one follow.
+    area_order: Dict[int, int] = field(default_factory=dict)
 
     def area_of_face(self, f: int) -> int:
         return self.face_areas[f] if self.face_areas else 0
 
 
 @dataclass
+class LoadCaseData:
+    """One explicit case of a load (``loads[i].cases[k]``): force and moment on the centre of mass."""
+    name: str
+    force: Sequence[float] = (0.0, 0.0, 0.0)    # N, world
+    moment: Sequence[float] = (0.0, 0.0, 0.0)   # N*m, world, about the centre of mass
+    max_deflection: Optional[float] = None      # m; this case's own stiffness limit
+
+
+# What a load's own cases are (docs/problem-format.md "Load cases"): the one
+# force/moment case "design", an explicit case list, or none (a box with a
+# mass held under the problem's envelope only).
+OWN_FORCE, OWN_CASES, OWN_NONE = "force", "cases", "none"
+
+
+@dataclass
 class LoadData:
-    """A load box: an oriented box, the force and moment on its centroid (world frame)."""
+    """A load box: an oriented box, its own cases (world frame) and its mass properties."""
     name: str
     center: Sequence[float]                     # m, world, box centroid
     size: Sequence[float]                       # m, along the box's local x, y, z
     rotation: Sequence[float] = (1.0, 0.0, 0.0, 0.0)  # quaternion w, x, y, z, local -> world
-    force: Sequence[float] = (0.0, 0.0, 0.0)    # N, world
-    moment: Sequence[float] = (0.0, 0.0, 0.0)   # N*m, world, about the centroid
+    force: Sequence[float] = (0.0, 0.0, 0.0)    # N, world (own == OWN_FORCE)
+    moment: Sequence[float] = (0.0, 0.0, 0.0)   # N*m, world, about the centroid (own == OWN_FORCE)
+    own: str = OWN_FORCE                        # OWN_FORCE, OWN_CASES or OWN_NONE
+    cases: List[LoadCaseData] = field(default_factory=list)   # own == OWN_CASES
+    mass: Optional[float] = None                # kg; None: no mass (no inertia cases, no box in the frequencies)
+    center_of_mass: Optional[Sequence[float]] = None    # m, world; None: the box centroid
+    inertia: Optional[Sequence[Sequence[float]]] = None  # kg*m^2, 3 by 3, world, about the centre of mass;
+    #                                                     None: the uniform box's
 
 
 @dataclass
@@ -52,6 +76,37 @@ class Requirements:
     min_margin_of_safety: float = 0.0
     safety_factor: float = 1.5
     clearance: float = 1e-3                  # m, beyond t/2 from the mid-surface
+    # Written only when set: naming either turns the buckling and frequency
+    # checks on (docs/problem-format.md "requirements"), so an old scene keeps
+    # solving as before.
+    min_buckling_factor: Optional[float] = None   # -; None: the format's default, safety_factor
+    min_frequency_hz: Optional[float] = None      # Hz; None: no floor
+
+
+# The FAR/CS 25.561(b)(3) preset of the envelope (docs/problem-format.md "Load
+# cases"), as the native reader expands it: (name, g (forward, left, up)).
+PRESET_FAR25_561 = "far25.561"
+PRESETS = {PRESET_FAR25_561: [("forward 9 g", (9.0, 0.0, 0.0)), ("rearward 1.5 g", (-1.5, 0.0, 0.0)),
+                              ("left 3 g", (0.0, 3.0, 0.0)), ("right 3 g", (0.0, -3.0, 0.0)),
+                              ("down 6 g", (0.0, 0.0, -6.0)), ("up 3 g", (0.0, 0.0, 3.0))]}
+STANDARD_GRAVITY = 9.80665   # m/s^2, g0 (CGPM 1901): the g of every load factor
+
+
+@dataclass
+class FactorData:
+    """One acceleration of the envelope: ``g`` in load factors along (forward, left, up)."""
+    name: str
+    g: Sequence[float] = (0.0, 0.0, 0.0)
+    max_deflection: Optional[float] = None      # m; copied to the cases it makes
+
+
+@dataclass
+class Envelope:
+    """The problem-level ``load_cases``: the aircraft's axes in the scene and the factors."""
+    forward: Sequence[float] = (1.0, 0.0, 0.0)  # world direction
+    up: Sequence[float] = (0.0, 0.0, 1.0)       # world direction, orthogonal to forward
+    preset: Optional[str] = PRESET_FAR25_561    # a preset name, or None: ``factors`` is the list
+    factors: List[FactorData] = field(default_factory=list)
 
 
 @dataclass
@@ -73,6 +128,7 @@ class Settings:
     search: Search = field(default_factory=Search)
     # The manufacturing limits have no Blender UI yet: kept verbatim (defaults depend on t).
     manufacturing: dict = field(default_factory=dict)
+    load_cases: Optional[Envelope] = None       # None: no envelope
 
 
 @dataclass
@@ -98,6 +154,11 @@ REQUIREMENT_FIELDS = [
     ("min_margin_of_safety", "minimum margin of safety", "any"),
     ("safety_factor", "safety factor", "pos"),
     ("clearance", "clearance (m)", "nonneg"),
+]
+# Written only when set (None: the format's default), each > 0.
+OPTIONAL_REQUIREMENT_FIELDS = [
+    ("min_buckling_factor", "minimum buckling factor"),
+    ("min_frequency_hz", "frequency floor (Hz)"),
 ]
 # (key, label, low, high) for integers; the ranges are the native parser's.
 SEARCH_INT_FIELDS = [

@@ -9,8 +9,8 @@ import math
 from typing import Callable, Dict, List, Optional, Sequence, Tuple
 
 from . import model
-from .geometry import is_finite_vec, quat_unit, rivet_area_areas
-from .model import LoadData, MeshData, SceneData, Settings
+from .geometry import axes_problem, inertia_problem, is_finite_vec, quat_rotate, quat_unit, rivet_area_areas
+from .model import Envelope, FactorData, LoadCaseData, LoadData, MeshData, SceneData, Settings
 
 
 class ProblemError(ValueError):
@@ -51,6 +51,7 @@ def scene_to_problem(scene: SceneData) -> Tuple[dict, List[str]]:
     meshes_json: List[dict] = []
     rivet_areas: List[dict] = []
     area_owner: Dict[str, str] = {}
+    area_rank: List[int] = []     # per entry of rivet_areas: its MeshData.area_order (0: none)
     mesh_names = set()
 
     if not scene.meshes:
@@ -109,12 +110,18 @@ def scene_to_problem(scene: SceneData) -> Tuple[dict, List[str]]:
             if not areas[k][0] > 0:
                 errors.append("%s: rivet area '%s' has zero area (degenerate faces)" % (where, name))
             rivet_areas.append({"name": name, "mesh": m.name, "faces": faces_of[k]})
+            area_rank.append(m.area_order.get(k, 0))
+    # An imported problem's order first, then the rest as emitted (sorted is stable).
+    order = sorted(range(len(rivet_areas)), key=lambda i: (area_rank[i] == 0, area_rank[i]))
+    rivet_areas = [rivet_areas[i] for i in order]
     if scene.meshes and not rivet_areas and not errors:
         errors.append("no rivet areas: select faces of an environment mesh in Edit Mode and press "
                       "'Mark' (Sheet Metal tab > Rivet Areas)")
 
     loads_json: List[dict] = []
     load_names = set()
+    factor_names = (envelope_factor_names(scene.settings.load_cases) if scene.settings.load_cases is not None
+                    else None)
     if not scene.loads:
         errors.append("no loads: select a box object and press 'Make Load' (Sheet Metal tab > Loads)")
     for ld in scene.loads:
@@ -128,26 +135,12 @@ def scene_to_problem(scene: SceneData) -> Tuple[dict, List[str]]:
             # Not an error for the solver, but confusing in reports and output folders.
             warnings.append("%s: an environment mesh has the same name" % where)
         load_names.add(ld.name)
-        ok = True
-        for key, n in (("center", 3), ("size", 3), ("rotation", 4), ("force", 3), ("moment", 3)):
-            if not is_finite_vec(getattr(ld, key), n):
-                errors.append("%s: %s must be %d finite numbers" % (where, key, n))
-                ok = False
-        if not ok:
-            continue
-        if not all(s > 0 for s in ld.size):
-            errors.append("%s: size must be positive on every axis, got %s m (a flat object cannot be a load box)"
-                          % (where, _fmt(ld.size)))
-        try:
-            rot = quat_unit(ld.rotation)
-        except ValueError:
-            errors.append("%s: rotation quaternion has zero length" % where)
-            continue
-        if all(x == 0 for x in ld.force) and all(x == 0 for x in ld.moment):
-            errors.append("%s: force and moment are both zero (set Force in the Loads panel)" % where)
-        loads_json.append({"name": ld.name, "center": [float(x) for x in ld.center],
-                           "size": [float(x) for x in ld.size], "rotation": [float(x) for x in rot],
-                           "force": [float(x) for x in ld.force], "moment": [float(x) for x in ld.moment]})
+        lj = load_to_json(ld, factor_names, errors)
+        if lj is not None:
+            loads_json.append(lj)
+    if scene.settings.load_cases is not None and scene.loads and not any(ld.mass is not None for ld in scene.loads):
+        errors.append("envelope: no load has a mass, so no load gets its cases (set a load's Mass in the Loads "
+                      "panel, or turn the envelope off)")
 
     settings_json = settings_to_json(scene.settings, errors)
     if errors:
@@ -159,6 +152,181 @@ def scene_to_problem(scene: SceneData) -> Tuple[dict, List[str]]:
                     "rivet_areas": rivet_areas, "loads": loads_json})
     problem.update(settings_json)
     return problem, warnings
+
+
+def _case_vectors_problem(force, moment) -> Optional[str]:
+    if not is_finite_vec(force, 3):
+        return "force must be 3 finite numbers"
+    if not is_finite_vec(moment, 3):
+        return "moment must be 3 finite numbers"
+    if all(x == 0 for x in force) and all(x == 0 for x in moment):
+        return "force and moment are both zero"
+    return None
+
+
+def _optional_positive(value, where: str, errors: List[str]) -> Optional[float]:
+    if value is None:
+        return None
+    _check_number(value, "pos", where, errors)
+    return float(value) if isinstance(value, (int, float)) else None
+
+
+def _outside_box(ld: LoadData, point) -> float:
+    """How far (m) ``point`` lies outside ld's box, 0 inside (box frame: R^T (p - centre))."""
+    w, x, y, z = quat_unit(ld.rotation)
+    local = quat_rotate((w, -x, -y, -z), [point[i] - ld.center[i] for i in range(3)])
+    return max(0.0, max(abs(local[i]) - 0.5 * ld.size[i] for i in range(3)))
+
+
+def _own_cases_json(ld: LoadData, where: str, errors: List[str]) -> Tuple[dict, List[str]]:
+    """A load's own cases as fields of ``loads[i]`` ({force, moment}, {cases} or {}) and their names."""
+    if ld.own == model.OWN_NONE:
+        return {}, []
+    if ld.own == model.OWN_FORCE:
+        if not is_finite_vec(ld.force, 3) or not is_finite_vec(ld.moment, 3):
+            errors.append("%s: force and moment must be 3 finite numbers each" % where)
+        elif all(x == 0 for x in ld.force) and all(x == 0 for x in ld.moment):
+            errors.append("%s: force and moment are both zero (set Force in the Loads panel)" % where)
+        return {"force": [float(x) for x in ld.force], "moment": [float(x) for x in ld.moment]}, ["design"]
+    if ld.own != model.OWN_CASES:
+        errors.append("%s: unknown kind of cases %r (expected force, cases or none)" % (where, ld.own))
+        return {}, []
+    if not ld.cases:
+        errors.append("%s: the case list is empty (add a case in the Loads panel, or use Force)" % where)
+    cases, names = [], []
+    for k, c in enumerate(ld.cases):
+        label = "%s, case %d" % (where, k + 1)
+        why = name_problem(c.name)
+        if why:
+            errors.append("%s: %s" % (label, why))
+        elif c.name in names:
+            errors.append("%s: duplicate case name '%s'" % (label, c.name))
+        names.append(c.name)
+        why = _case_vectors_problem(c.force, c.moment)
+        if why:
+            errors.append("%s '%s': %s" % (label, c.name, why))
+            continue
+        cj = {"name": c.name, "force": [float(x) for x in c.force]}
+        if any(x != 0 for x in c.moment):   # as a file would write it: no moment, no field
+            cj["moment"] = [float(x) for x in c.moment]
+        dmax = _optional_positive(c.max_deflection, "%s '%s': max deflection (m)" % (label, c.name), errors)
+        if dmax is not None:
+            cj["max_deflection"] = dmax
+        cases.append(cj)
+    return {"cases": cases}, names
+
+
+def _mass_json(ld: LoadData, where: str, errors: List[str]) -> dict:
+    """A load's mass, centre of mass and inertia as fields of ``loads[i]`` (only those given)."""
+    if ld.mass is None:
+        if ld.center_of_mass is not None or ld.inertia is not None:
+            errors.append("%s: a centre of mass or inertia is given without a mass (set Mass in the Loads panel)"
+                          % where)
+        return {}
+    out = {}
+    _check_number(ld.mass, "pos", "%s: mass (kg)" % where, errors)
+    out["mass"] = float(ld.mass) if isinstance(ld.mass, (int, float)) else ld.mass
+    if ld.center_of_mass is not None:
+        if not is_finite_vec(ld.center_of_mass, 3):
+            errors.append("%s: centre of mass must be 3 finite numbers (m)" % where)
+        else:
+            outside = _outside_box(ld, ld.center_of_mass)
+            if outside > 1e-6:  # the native reader's slack for float32 coordinates
+                errors.append("%s: centre of mass %s m lies %.4g mm outside the load box"
+                              % (where, _fmt(ld.center_of_mass), outside * 1e3))
+            out["center_of_mass"] = [float(x) for x in ld.center_of_mass]
+    if ld.inertia is not None:
+        why = inertia_problem(ld.inertia)
+        if why:
+            errors.append("%s: %s" % (where, why))
+        else:
+            out["inertia"] = [[float(x) for x in row] for row in ld.inertia]
+    return out
+
+
+def load_to_json(ld: LoadData, factor_names: Optional[List[str]], errors: List[str]) -> Optional[dict]:
+    """``loads[i]`` for one load box, or None after adding its problems to ``errors`` (docs/problem-format.md).
+
+    ``factor_names``: the case names of the problem's envelope, None without one.
+    """
+    where = "load '%s'" % ld.name
+    for key, n in (("center", 3), ("size", 3), ("rotation", 4)):
+        if not is_finite_vec(getattr(ld, key), n):
+            errors.append("%s: %s must be %d finite numbers" % (where, key, n))
+            return None
+    if not all(s > 0 for s in ld.size):
+        errors.append("%s: size must be positive on every axis, got %s m (a flat object cannot be a load box)"
+                      % (where, _fmt(ld.size)))
+    try:
+        rot = quat_unit(ld.rotation)
+    except ValueError:
+        errors.append("%s: rotation quaternion has zero length" % where)
+        return None
+    lj = {"name": ld.name, "center": [float(x) for x in ld.center], "size": [float(x) for x in ld.size],
+          "rotation": [float(x) for x in rot]}
+    before = len(errors)
+    own, own_names = _own_cases_json(ld, where, errors)
+    lj.update(own)
+    if ld.own == model.OWN_NONE and (ld.mass is None or factor_names is None):
+        errors.append("%s: it has no force and no cases of its own, so it needs a Mass and the envelope "
+                      "(Loads panel)" % where)
+    if ld.mass is not None and factor_names:
+        for name in own_names:
+            if name in factor_names:
+                errors.append("%s: its case '%s' has the name of an envelope factor; names must be unique per load "
+                              "(rename one)" % (where, name))
+    lj.update(_mass_json(ld, where, errors))
+    return lj if len(errors) == before else None
+
+
+def envelope_to_json(env: Envelope, errors: List[str]) -> dict:
+    """The problem-level ``load_cases``; problems go to ``errors`` (named "envelope", as in the Loads panel)."""
+    out = {"forward": [float(x) for x in env.forward] if is_finite_vec(env.forward, 3) else None,
+           "up": [float(x) for x in env.up] if is_finite_vec(env.up, 3) else None}
+    if out["forward"] is None or out["up"] is None:
+        errors.append("envelope: forward and up must be 3 finite numbers each")
+    else:
+        why = axes_problem(env.forward, env.up)
+        if why:
+            errors.append("envelope: %s (set the aircraft's axes in the Loads panel)" % why)
+    if env.preset is not None:
+        if env.preset not in model.PRESETS:
+            errors.append("envelope: unknown preset '%s' (the one preset is '%s')" % (env.preset,
+                                                                                     model.PRESET_FAR25_561))
+        out["factors"] = env.preset
+        return out
+    if not env.factors:
+        errors.append("envelope: the factor list is empty (add a factor, or pick the preset)")
+    factors, names = [], set()
+    for k, f in enumerate(env.factors):
+        label = "envelope, factor %d" % (k + 1)
+        why = name_problem(f.name)
+        if why:
+            errors.append("%s: %s" % (label, why))
+        elif f.name in names:
+            errors.append("%s: duplicate factor name '%s'" % (label, f.name))
+        names.add(f.name)
+        if not is_finite_vec(f.g, 3):
+            errors.append("%s '%s': g must be 3 finite numbers (forward, left, up)" % (label, f.name))
+            continue
+        if all(x == 0 for x in f.g):
+            errors.append("%s '%s': g is [0, 0, 0]: a case with no force" % (label, f.name))
+        fj = {"name": f.name, "g": [float(x) for x in f.g]}
+        dmax = _optional_positive(f.max_deflection, "%s '%s': max deflection (m)" % (label, f.name), errors)
+        if dmax is not None:
+            fj["max_deflection"] = dmax
+        factors.append(fj)
+    out["factors"] = factors
+    return out
+
+
+def envelope_factor_names(env: Optional[Envelope]) -> List[str]:
+    """The case names an envelope gives every massed load, in order."""
+    if env is None:
+        return []
+    if env.preset is not None:
+        return [name for name, _g in model.PRESETS.get(env.preset, [])]
+    return [f.name for f in env.factors]
 
 
 def _check_number(value, kind: str, where: str, errors: List[str]) -> None:
@@ -193,6 +361,10 @@ def settings_to_json(s: Settings, errors: List[str]) -> dict:
         v = getattr(r, key)
         _check_number(v, kind, "requirements.%s (%s)" % (key, label), errors)
         req[key] = float(v)
+    for key, label in model.OPTIONAL_REQUIREMENT_FIELDS:
+        v = _optional_positive(getattr(r, key), "requirements.%s (%s)" % (key, label), errors)
+        if v is not None:
+            req[key] = v
     search = {}
     for key, label, lo, hi in model.SEARCH_INT_FIELDS:
         v = getattr(s.search, key)
@@ -205,15 +377,20 @@ def settings_to_json(s: Settings, errors: List[str]) -> dict:
         search[key] = float(v)
     if not isinstance(s.manufacturing, dict):
         errors.append("manufacturing: expected an object")
-    return {"material": mat, "requirements": req, "manufacturing": dict(s.manufacturing or {}), "search": search}
+    out = {}
+    if s.load_cases is not None:
+        out["load_cases"] = envelope_to_json(s.load_cases, errors)
+    out.update({"material": mat, "requirements": req, "manufacturing": dict(s.manufacturing or {}), "search": search})
+    return out
 
 
 # ---------------------------------------------------------------------------
 # problem -> scene
 
 MeshReader = Callable[[int, dict], Tuple[Sequence[Sequence[float]], Sequence[Sequence[int]]]]
-TOP_FIELDS = ("format", "name", "description", "units", "environment", "rivet_areas", "loads", "material",
-              "requirements", "manufacturing", "search")
+TOP_FIELDS = ("format", "name", "description", "units", "environment", "rivet_areas", "loads", "load_cases",
+              "material", "requirements", "manufacturing", "search")
+LOAD_FIELDS = ("name", "center", "size", "rotation", "force", "moment", "mass", "center_of_mass", "inertia", "cases")
 
 
 class _Errors:
@@ -359,6 +536,7 @@ def problem_to_scene(problem: dict, mesh_reader: Optional[MeshReader] = None) ->
                 err.add(field + ".faces", "rivet area '%s' has no faces" % name)
             k = len(mesh.area_names) + 1  # ids are local to the mesh, in file order
             mesh.area_names[k] = name
+            mesh.area_order[k] = i + 1
             for j, f in enumerate(faces):
                 if not isinstance(f, int) or isinstance(f, bool) or not 0 <= f < len(mesh.triangles):
                     err.add("%s.faces[%d]" % (field, j), "face index %r is out of range (mesh '%s' has %d faces)"
@@ -379,34 +557,158 @@ def problem_to_scene(problem: dict, mesh_reader: Optional[MeshReader] = None) ->
             field = "loads[%d]" % i
             if not _obj(lj, field, err):
                 continue
-            _unknown(lj, ("name", "center", "size", "rotation", "force", "moment"), field, err)
-            name = lj.get("name")
-            why = name_problem(name)
-            if why:
-                err.add(field + ".name", why)
+            ld = load_from_json(lj, field, "load_cases" in problem, err)
+            if ld is None:
                 continue
-            if any(l.name == name for l in scene.loads):
-                err.add(field + ".name", "duplicate load name '%s'" % name)
-            center = _vec(lj.get("center"), 3, field + ".center", err)
-            size = _vec(lj.get("size"), 3, field + ".size", err)
-            rot = _vec(lj.get("rotation", [1, 0, 0, 0]), 4, field + ".rotation", err)
-            force = _vec(lj.get("force"), 3, field + ".force", err)
-            moment = _vec(lj.get("moment", [0, 0, 0]), 3, field + ".moment", err)
-            if None in (center, size, rot, force, moment):
-                continue
-            if not all(s > 0 for s in size):
-                err.add(field + ".size", "must be positive on every axis, got %s" % _fmt(size))
-            try:
-                rot = list(quat_unit(rot))
-            except ValueError:
-                err.add(field + ".rotation", "quaternion has zero length")
-                continue
-            scene.loads.append(LoadData(name=name, center=center, size=size, rotation=rot, force=force, moment=moment))
+            if any(l.name == ld.name for l in scene.loads):
+                err.add(field + ".name", "duplicate load name '%s'" % ld.name)
+            scene.loads.append(ld)
 
     scene.settings = settings_from_json(problem, err)
+    massed = [lj for lj in loads if isinstance(lj, dict) and "mass" in lj] if isinstance(loads, list) else []
+    if scene.settings.load_cases is not None and scene.loads and not massed:
+        err.add("load_cases", "no load has a 'mass', so no load gets these cases (give a box its mass)")
     if err.items:
         raise ProblemError(err.items, warnings)
     return scene, warnings
+
+
+def _number(node, kind: str, field: str, err: _Errors) -> Optional[float]:
+    before = len(err.items)
+    _check_number(node, kind, field, err.items)
+    return float(node) if len(err.items) == before else None
+
+
+def _cases_from_json(node, field: str, err: _Errors) -> List[LoadCaseData]:
+    out: List[LoadCaseData] = []
+    if not _list(node, field, err):
+        return out
+    if not node:
+        err.add(field, "no cases: give at least one, or 'force'")
+    for k, cj in enumerate(node):
+        f = "%s[%d]" % (field, k)
+        if not _obj(cj, f, err):
+            continue
+        _unknown(cj, ("name", "force", "moment", "max_deflection"), f, err)
+        name = cj.get("name")
+        why = name_problem(name)
+        if why:
+            err.add(f + ".name", why)
+            continue
+        if any(c.name == name for c in out):
+            err.add(f + ".name", "duplicate case name '%s'" % name)
+        force = _vec(cj.get("force", [0, 0, 0]), 3, f + ".force", err)
+        moment = _vec(cj.get("moment", [0, 0, 0]), 3, f + ".moment", err)
+        if force is None or moment is None:
+            continue
+        if not any(force) and not any(moment):
+            err.add(f, "case '%s' has no force and no moment" % name)
+        dmax = _number(cj["max_deflection"], "pos", f + ".max_deflection", err) if "max_deflection" in cj else None
+        out.append(LoadCaseData(name=name, force=force, moment=moment, max_deflection=dmax))
+    return out
+
+
+def load_from_json(lj: dict, field: str, has_envelope: bool, err: _Errors) -> Optional[LoadData]:
+    """LoadData of ``loads[i]``, or None after adding its problems to ``err``."""
+    _unknown(lj, LOAD_FIELDS, field, err)
+    name = lj.get("name")
+    why = name_problem(name)
+    if why:
+        err.add(field + ".name", why)
+        return None
+    center = _vec(lj.get("center"), 3, field + ".center", err)
+    size = _vec(lj.get("size"), 3, field + ".size", err)
+    rot = _vec(lj.get("rotation", [1, 0, 0, 0]), 4, field + ".rotation", err)
+    if None in (center, size, rot):
+        return None
+    if not all(s > 0 for s in size):
+        err.add(field + ".size", "must be positive on every axis, got %s" % _fmt(size))
+    try:
+        rot = list(quat_unit(rot))
+    except ValueError:
+        err.add(field + ".rotation", "quaternion has zero length")
+        return None
+    ld = LoadData(name=name, center=center, size=size, rotation=rot, force=[0.0, 0.0, 0.0], moment=[0.0, 0.0, 0.0])
+    if "mass" in lj:
+        ld.mass = _number(lj["mass"], "pos", field + ".mass", err)
+    elif "center_of_mass" in lj or "inertia" in lj:
+        key = "center_of_mass" if "center_of_mass" in lj else "inertia"
+        err.add(field + "." + key, "is given without 'mass' (kg): give the box's mass too")
+    if "center_of_mass" in lj:
+        ld.center_of_mass = _vec(lj["center_of_mass"], 3, field + ".center_of_mass", err)
+        if ld.center_of_mass is not None and _outside_box(ld, ld.center_of_mass) > 1e-6:
+            err.add(field + ".center_of_mass", "centre of mass lies %.4g mm outside the load box"
+                    % (_outside_box(ld, ld.center_of_mass) * 1e3))
+    if "inertia" in lj:
+        why = inertia_problem(lj["inertia"])
+        if why:
+            err.add(field + ".inertia", why)
+        else:
+            ld.inertia = [[float(x) for x in row] for row in lj["inertia"]]
+    if "cases" in lj:
+        for key in ("force", "moment"):
+            if key in lj:
+                err.add(field + "." + key, "give either 'cases' or 'force'/'moment', not both")
+        ld.own = model.OWN_CASES
+        ld.cases = _cases_from_json(lj["cases"], field + ".cases", err)
+    elif "force" in lj or "moment" in lj or not (has_envelope and "mass" in lj):
+        if "force" not in lj:
+            err.add(field + ".force", "required field is missing (or give 'cases', or a 'mass' with a problem-level "
+                    "'load_cases')")
+            return None
+        ld.force = _vec(lj.get("force"), 3, field + ".force", err)
+        ld.moment = _vec(lj.get("moment", [0, 0, 0]), 3, field + ".moment", err)
+        if ld.force is None or ld.moment is None:
+            return None
+    else:
+        ld.own = model.OWN_NONE
+    return ld
+
+
+def envelope_from_json(node, err: _Errors) -> Optional[Envelope]:
+    """The problem-level ``load_cases`` as an Envelope, or None after adding its problems to ``err``."""
+    if not _obj(node, "load_cases", err):
+        return None
+    _unknown(node, ("forward", "up", "factors"), "load_cases", err)
+    forward = _vec(node.get("forward"), 3, "load_cases.forward", err)
+    up = _vec(node.get("up"), 3, "load_cases.up", err)
+    if forward is None or up is None:
+        return None
+    why = axes_problem(forward, up)
+    if why:
+        err.add("load_cases.forward" if why.startswith("forward has") else "load_cases.up", why)
+    env = Envelope(forward=forward, up=up, preset=None)
+    factors = node.get("factors")
+    if isinstance(factors, str):
+        if factors not in model.PRESETS:
+            err.add("load_cases.factors", "unknown preset '%s' (the one preset is '%s')"
+                    % (factors, model.PRESET_FAR25_561))
+        env.preset = factors
+    elif isinstance(factors, list):
+        if not factors:
+            err.add("load_cases.factors", "no factors: give at least one, or the preset '%s'" % model.PRESET_FAR25_561)
+        for k, fj in enumerate(factors):
+            f = "load_cases.factors[%d]" % k
+            if not _obj(fj, f, err):
+                continue
+            _unknown(fj, ("name", "g", "max_deflection"), f, err)
+            name = fj.get("name")
+            why = name_problem(name)
+            if why:
+                err.add(f + ".name", why)
+                continue
+            if any(x.name == name for x in env.factors):
+                err.add(f + ".name", "duplicate factor name '%s'" % name)
+            g = _vec(fj.get("g"), 3, f + ".g", err)
+            if g is None:
+                continue
+            if not any(g):
+                err.add(f + ".g", "factor '%s' is [0, 0, 0] g: a case with no force and no moment" % name)
+            dmax = _number(fj["max_deflection"], "pos", f + ".max_deflection", err) if "max_deflection" in fj else None
+            env.factors.append(FactorData(name=name, g=g, max_deflection=dmax))
+    else:
+        err.add("load_cases.factors", "expected the preset name '%s' or an array of factors" % model.PRESET_FAR25_561)
+    return env
 
 
 def settings_from_json(problem: dict, err: _Errors) -> Settings:
@@ -422,8 +724,8 @@ def settings_from_json(problem: dict, err: _Errors) -> Settings:
                     setattr(s.material, key, float(mat[key]))
     req = problem.get("requirements", {})
     if _obj(req, "requirements", err):
-        _unknown(req, ("max_compliance", "max_deflection") + tuple(k for k, _, _ in model.REQUIREMENT_FIELDS),
-                 "requirements", err)
+        _unknown(req, ("max_compliance", "max_deflection") + tuple(k for k, _, _ in model.REQUIREMENT_FIELDS) +
+                 tuple(k for k, _ in model.OPTIONAL_REQUIREMENT_FIELDS), "requirements", err)
         if "max_compliance" in req and "max_deflection" in req:
             err.add("requirements", "give max_compliance or max_deflection, not both")
         elif "max_compliance" in req:
@@ -436,6 +738,11 @@ def settings_from_json(problem: dict, err: _Errors) -> Settings:
             if key in req:
                 _check_number(req[key], kind, "requirements." + key, err.items)
                 setattr(s.requirements, key, req[key])
+        for key, _label in model.OPTIONAL_REQUIREMENT_FIELDS:
+            if key in req:
+                setattr(s.requirements, key, _number(req[key], "pos", "requirements." + key, err))
+    if "load_cases" in problem:
+        s.load_cases = envelope_from_json(problem["load_cases"], err)
     man = problem.get("manufacturing", {})
     if _obj(man, "manufacturing", err):
         s.manufacturing = dict(man)
