@@ -13,7 +13,8 @@ byte for byte.
    it, its problem run again on the other worker, and every problem end with
    exactly one complete folder, no staging folder left. A missing and a
    malformed problem file ride along and fail alone, each with its one-line
-   reason in summary.csv.
+   reason in summary.csv. Then a second farm client is killed outright
+   (SIGKILL) while solves run: the workers stop them.
 2. interrupt and resume (fast tier): a local-cluster run (one worker) gets
    SIGINT once its first problem is published: exit 130, the finished
    folders complete, no staging folder and no solver left; the same command
@@ -224,7 +225,8 @@ def check_cluster(check, farm, problems, search, serial, root, full):
             print(f"   killed worker {victim} after its sheetgen on {problem_killed} ran {ran:.1f} s", flush=True)
         stdout, stderr = proc.communicate(timeout=7200)
         wall = time.monotonic() - t0
-    print(stdout + stderr, flush=True)
+        print(stdout + stderr, flush=True)
+        check_client_killed(check, farm, problems, search, cluster, os.path.join(root, "client_killed"))
     check("cluster: a worker was killed while its sheetgen ran", victim is not None)
     if victim:
         check("cluster: the killed worker's sheetgen died with it", not solver.is_running())
@@ -252,6 +254,26 @@ def check_cluster(check, farm, problems, search, serial, root, full):
               and not os.path.exists(os.path.join(out_root, name)), reason)
     check("cluster: the malformed file's reason is sheetgen's (the unknown field)",
           "requirments" in summary.get("malformed", {}).get("reason", ""))
+
+
+def check_client_killed(check, farm, problems, search, cluster, out_root):
+    """Check 1b: a farm client killed outright (SIGKILL, no clean-up of its own) stops its solves on the
+    workers: the scheduler releases its tasks and each task stops its solver."""
+    cmd = [farm, *problems.values(), "--out", out_root, "--scheduler", cluster.address, *search]
+    proc = subprocess.Popen(cmd, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL, start_new_session=True)
+    while proc.poll() is None and not solvers_writing(out_root):
+        time.sleep(0.1)
+    running = len(solvers_writing(out_root))
+    proc.kill()
+    proc.wait()
+    t0 = time.monotonic()
+    while solvers_writing(out_root) and time.monotonic() - t0 < 30:
+        time.sleep(0.1)
+    left = solvers_writing(out_root)
+    check("client killed: its running solves on the workers stop", running and not left,
+          f"{running} running, stopped in {time.monotonic() - t0:.1f} s")
+    time.sleep(1.0)  # the tasks remove their staging folders after their solver ends
+    check("client killed: no staging folder left", not staging_left(out_root), ", ".join(staging_left(out_root)))
 
 
 def check_interrupt_resume(check, farm, problems, search, serial, root):

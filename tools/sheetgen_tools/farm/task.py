@@ -14,7 +14,9 @@ segfault) or the file system failed, which Dask's `retries` then re-runs.
 A worker that dies mid-task is the scheduler's business: it runs the task
 again elsewhere (`distributed.scheduler.allowed-failures`), and the solver of
 the dead worker dies with it (setpriv --pdeathsig), so two attempts never
-write the same folder.
+write the same folder. A task whose client cancels it or goes away (Ctrl-C,
+a killed client) sees the scheduler release it and stops its solver: Dask
+cannot stop a running task's thread, so the task watches for that itself.
 """
 import dataclasses
 import datetime
@@ -31,6 +33,7 @@ import uuid
 from typing import Optional
 
 import distributed
+from distributed.worker import thread_state
 
 from .. import runner
 
@@ -151,11 +154,25 @@ class _Process:
     wall_s: float
     cpu_s: float
     peak_rss_mb: float
-    timed_out: bool
+    stopped: str                     # "" when it ran to its end, else "timeout" or "released"
+
+
+def _released_by_scheduler():
+    """A function telling whether the scheduler has released the calling task
+    (its client cancelled it or went away): Dask cannot stop a running task's
+    thread and only marks it, so the task asks. Outside a worker: never."""
+    try:
+        worker, key = distributed.get_worker(), thread_state.key
+    except (ValueError, AttributeError):
+        return lambda: False
+    tasks = getattr(worker, "state", worker).tasks
+    return lambda: key not in tasks or tasks[key].state in ("cancelled", "released", "forgotten")
 
 
 def _run_solver(cmd, log, timeout_s, run_id):
-    """Runs cmd to its end (or its timeout) with its output in log; None when the run was stopped before it began."""
+    """Runs cmd to its end, its timeout or its release, with its output in log;
+    None when the run was stopped before it began."""
+    released = _released_by_scheduler()
     # setpriv --pdeathsig: the solver gets SIGKILL when this worker thread dies
     # (a killed worker must not leave a solver writing). A new session keeps a
     # terminal's Ctrl-C away from it: the client stops it (stop_run).
@@ -166,16 +183,19 @@ def _run_solver(cmd, log, timeout_s, run_id):
         proc = subprocess.Popen(["setpriv", "--pdeathsig", "KILL", "--"] + cmd, stdin=subprocess.DEVNULL,
                                 stdout=log, stderr=subprocess.STDOUT, start_new_session=True)
         _running.setdefault(run_id, set()).add(proc)
-    timed_out, kill_at = False, None
+    stopped, kill_at = "", None
     try:
         while True:
             pid, status, usage = os.wait4(proc.pid, os.WNOHANG)
             if pid:
                 break
             now = time.monotonic()
-            if timeout_s is not None and not timed_out and now - t0 > timeout_s:
-                proc.terminate()
-                timed_out, kill_at = True, now + TERM_GRACE_S
+            if not stopped:
+                stopped = ("timeout" if timeout_s is not None and now - t0 > timeout_s else
+                           "released" if released() else "")
+                if stopped:
+                    proc.terminate()
+                    kill_at = now + TERM_GRACE_S
             if kill_at is not None and now > kill_at:
                 proc.kill()
             time.sleep(POLL_S)
@@ -184,7 +204,7 @@ def _run_solver(cmd, log, timeout_s, run_id):
             _running[run_id].discard(proc)
     proc.returncode = code = os.waitstatus_to_exitcode(status)  # reaped by wait4: tell Popen
     return _Process(exit_code=code, wall_s=time.monotonic() - t0, cpu_s=usage.ru_utime + usage.ru_stime,
-                    peak_rss_mb=usage.ru_maxrss / 1024.0, timed_out=timed_out)
+                    peak_rss_mb=usage.ru_maxrss / 1024.0, stopped=stopped)
 
 
 def _last_line(path):
@@ -240,9 +260,9 @@ def solve_task(task):
             return record
         record.wall_s, record.cpu_s, record.peak_rss_mb = ran.wall_s, ran.cpu_s, ran.peak_rss_mb
         record.exit_code = ran.exit_code if ran.exit_code >= 0 else None
-        if ran.timed_out:
+        if ran.stopped == "timeout":
             record.reason = f"timed out after {task.timeout_s:g} s"
-        elif task.run_id in _stopped:
+        elif ran.stopped == "released" or task.run_id in _stopped:
             record.status, record.reason = "cancelled", "interrupted"
         elif ran.exit_code < 0:
             raise SolverCrashed(f"{task.name}: sheetgen was killed by {signal.Signals(-ran.exit_code).name} "
