@@ -323,7 +323,45 @@ class SHEETGEN_OT_render(bpy.types.Operator):
         return {'FINISHED'}
 
 
-CLASSES = (SHEETGEN_OT_generate, SHEETGEN_OT_export_results, SHEETGEN_OT_render)
+class SHEETGEN_OT_show_modes(bpy.types.Operator):
+    """Add the buckling mode (governing case) and the first vibration mode of a load's part as shape keys of a new
+    object "<load> modes" (its FEM mesh); scrub the keys' values from -1 to 1"""
+    bl_idname = "sheetgen.show_modes"
+    bl_label = "Show Modes"
+    bl_options = {'REGISTER', 'UNDO'}
+
+    load: StringProperty(name="Load", description="The load whose part's modes are shown")
+
+    @classmethod
+    def poll(cls, context):
+        return results.run_document(context.scene.sheetgen.result_collection) is not None
+
+    def execute(self, context):
+        from . import modes
+        from .core import modes as core_modes
+        col = context.scene.sheetgen.result_collection
+        doc = results.run_document(col)
+        files = results.run_files(col)
+        try:
+            raw = modes.run_modes(files, doc, self.load, base_dir=bpy.path.abspath("//") or os.getcwd())
+            plain = core_modes.modes_mesh(raw)
+        except core_modes.ModesError as e:
+            self.report({'ERROR'}, str(e))
+            return {'CANCELLED'}
+        try:
+            thickness = float(json.loads(files["problem.json"])["material"]["thickness"])
+        except (KeyError, TypeError, ValueError):
+            from .core import model
+            thickness = model.Material().thickness
+        obj = results.build_modes(col, self.load, plain, thickness)
+        if not plain.keys:
+            self.report({'WARNING'}, "%s: no mode moves the sheet (%s)" % (self.load, plain.summary))
+        else:
+            self.report({'INFO'}, "%s: %s; shape keys on '%s'" % (self.load, plain.summary, obj.name))
+        return {'FINISHED'}
+
+
+CLASSES = (SHEETGEN_OT_generate, SHEETGEN_OT_export_results, SHEETGEN_OT_render, SHEETGEN_OT_show_modes)
 
 
 def register():

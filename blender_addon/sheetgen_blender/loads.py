@@ -40,6 +40,8 @@ def update_arrow(obj):
     if arrow is None:
         return
     f = Vector(obj.sheetgen.force)
+    # Only the one-force load has a single direction to show; a case list or the envelope has many.
+    arrow.hide_viewport = obj.sheetgen.own_cases != 'FORCE'
     arrow.rotation_mode = 'QUATERNION'
     arrow.rotation_quaternion = Vector((0, 0, 1)).rotation_difference(f.normalized()) if f.length > 0 else (1, 0, 0, 0)
     arrow.empty_display_size = _arrow_size(obj)

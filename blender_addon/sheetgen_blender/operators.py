@@ -218,6 +218,111 @@ class SHEETGEN_OT_load_clear(bpy.types.Operator):
         return {'FINISHED'}
 
 
+def _load_poll(context):
+    obj = context.active_object
+    return obj is not None and obj.sheetgen.is_load
+
+
+def _unique_name(existing, base):
+    names = set(existing)
+    if base not in names:
+        return base
+    k = 2
+    while "%s %d" % (base, k) in names:
+        k += 1
+    return "%s %d" % (base, k)
+
+
+class SHEETGEN_OT_load_case_add(bpy.types.Operator):
+    """Add a named case to the active load (its force and moment act on the centre of mass)"""
+    bl_idname = "sheetgen.load_case_add"
+    bl_label = "Add Case"
+    bl_options = {'REGISTER', 'UNDO'}
+
+    @classmethod
+    def poll(cls, context):
+        return _load_poll(context)
+
+    def execute(self, context):
+        s = context.active_object.sheetgen
+        item = s.cases.add()
+        item.name = _unique_name([c.name for c in s.cases if c != item], "case %d" % len(s.cases))
+        s.case_index = len(s.cases) - 1
+        s.own_cases = 'CASES'
+        return {'FINISHED'}
+
+
+class SHEETGEN_OT_load_case_remove(bpy.types.Operator):
+    """Remove the active case of the active load"""
+    bl_idname = "sheetgen.load_case_remove"
+    bl_label = "Remove Case"
+    bl_options = {'REGISTER', 'UNDO'}
+
+    @classmethod
+    def poll(cls, context):
+        return _load_poll(context) and 0 <= context.active_object.sheetgen.case_index < len(
+            context.active_object.sheetgen.cases)
+
+    def execute(self, context):
+        s = context.active_object.sheetgen
+        s.cases.remove(s.case_index)
+        s.case_index = max(min(s.case_index, len(s.cases) - 1), 0)
+        return {'FINISHED'}
+
+
+class SHEETGEN_OT_envelope_factor_add(bpy.types.Operator):
+    """Add a load factor to the envelope's list (g along the aircraft's forward, left, up)"""
+    bl_idname = "sheetgen.envelope_factor_add"
+    bl_label = "Add Factor"
+    bl_options = {'REGISTER', 'UNDO'}
+
+    def execute(self, context):
+        p = context.scene.sheetgen
+        item = p.envelope_factors.add()
+        item.name = _unique_name([f.name for f in p.envelope_factors if f != item],
+                                 "factor %d" % len(p.envelope_factors))
+        p.envelope_factor_index = len(p.envelope_factors) - 1
+        p.envelope_kind = 'LIST'
+        return {'FINISHED'}
+
+
+class SHEETGEN_OT_envelope_factor_remove(bpy.types.Operator):
+    """Remove the active factor of the envelope's list"""
+    bl_idname = "sheetgen.envelope_factor_remove"
+    bl_label = "Remove Factor"
+    bl_options = {'REGISTER', 'UNDO'}
+
+    @classmethod
+    def poll(cls, context):
+        p = context.scene.sheetgen
+        return 0 <= p.envelope_factor_index < len(p.envelope_factors)
+
+    def execute(self, context):
+        p = context.scene.sheetgen
+        p.envelope_factors.remove(p.envelope_factor_index)
+        p.envelope_factor_index = max(min(p.envelope_factor_index, len(p.envelope_factors) - 1), 0)
+        return {'FINISHED'}
+
+
+class SHEETGEN_OT_envelope_factors_from_preset(bpy.types.Operator):
+    """Replace the factor list with the FAR/CS 25.561 preset's six factors, to edit them"""
+    bl_idname = "sheetgen.envelope_factors_from_preset"
+    bl_label = "Factors from Preset"
+    bl_options = {'REGISTER', 'UNDO'}
+
+    def execute(self, context):
+        from .core import model
+        p = context.scene.sheetgen
+        p.envelope_factors.clear()
+        for name, g in model.PRESETS[model.PRESET_FAR25_561]:
+            item = p.envelope_factors.add()
+            item.name = name
+            item.g = g
+        p.envelope_factor_index = 0
+        p.envelope_kind = 'LIST'
+        return {'FINISHED'}
+
+
 # ---------------------------------------------------------------------------
 # problem files
 
@@ -301,10 +406,20 @@ class SHEETGEN_OT_import_problem(bpy.types.Operator, ImportHelper):
         return {'FINISHED'}
 
 
+def _load_summary(ld):
+    """'radio 2.4 kg, 8 cases, |F| up to 212 N' or 'radio |F| 100 N' (one case)."""
+    cases = list(ld.cases)
+    peak = max(sum(x * x for x in c.force) ** 0.5 for c in cases) if cases else 0.0
+    mass = "" if ld.mass is None else " %.4g kg," % ld.mass
+    if len(cases) <= 1:
+        return "%s%s |F| %.4g N" % (ld.name, mass, peak)
+    return "%s%s %d cases, |F| up to %.4g N" % (ld.name, mass, len(cases), peak)
+
+
 def problem_summary(p):
     """One line about a native Problem: what `sheetgen check` prints, shortened."""
     areas = ", ".join("%s %.4g m²" % (ra.name, ra.area_m2) for ra in p.rivet_areas)
-    lds = ", ".join("%s |F| %.4g N" % (ld.name, sum(x * x for x in ld.force) ** 0.5) for ld in p.loads)
+    lds = ", ".join(_load_summary(ld) for ld in p.loads)
     return ("Problem OK: %d meshes, %d triangles; rivet areas: %s; loads: %s"
             % (len(p.meshes), p.triangle_count, areas, lds))
 
@@ -338,6 +453,8 @@ class SHEETGEN_OT_check_problem(bpy.types.Operator):
 CLASSES = (SHEETGEN_OT_rivet_area_add, SHEETGEN_OT_rivet_area_remove, SHEETGEN_OT_rivet_area_mark,
            SHEETGEN_OT_rivet_area_unmark, SHEETGEN_OT_rivet_area_select, SHEETGEN_OT_rivet_area_refresh,
            SHEETGEN_OT_show_rivet_areas, SHEETGEN_OT_load_make, SHEETGEN_OT_load_clear,
+           SHEETGEN_OT_load_case_add, SHEETGEN_OT_load_case_remove, SHEETGEN_OT_envelope_factor_add,
+           SHEETGEN_OT_envelope_factor_remove, SHEETGEN_OT_envelope_factors_from_preset,
            SHEETGEN_OT_export_problem, SHEETGEN_OT_import_problem, SHEETGEN_OT_check_problem)
 
 

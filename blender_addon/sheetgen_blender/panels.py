@@ -22,6 +22,33 @@ class SHEETGEN_UL_rivet_areas(bpy.types.UIList):
         sub.label(text="%.4g m²  (%d)" % (item.area_m2, item.face_count))
 
 
+class SHEETGEN_UL_load_cases(bpy.types.UIList):
+    def draw_item(self, context, layout, data, item, icon, active_data, active_propname, index):
+        row = layout.row(align=True)
+        row.prop(item, "name", text="", emboss=False)
+        sub = row.row()
+        sub.alignment = 'RIGHT'
+        sub.label(text="%.4g N" % sum(x * x for x in item.force) ** 0.5)
+
+
+class SHEETGEN_UL_factors(bpy.types.UIList):
+    def draw_item(self, context, layout, data, item, icon, active_data, active_propname, index):
+        row = layout.row(align=True)
+        row.prop(item, "name", text="", emboss=False)
+        sub = row.row()
+        sub.alignment = 'RIGHT'
+        sub.label(text="(%g, %g, %g) g" % tuple(item.g))
+
+
+def _optional(layout, data, use, value, label):
+    """A checkbox and its value on one row; the value greyed out while the box is off."""
+    row = layout.row(align=True)
+    row.prop(data, use, text="")
+    sub = row.row(align=True)
+    sub.active = getattr(data, use)
+    sub.prop(data, value, text=label)
+
+
 class SHEETGEN_PT_main(_Panel, bpy.types.Panel):
     bl_label = "sheetgen"
     bl_idname = "SHEETGEN_PT_main"
@@ -99,6 +126,7 @@ class SHEETGEN_PT_rivet_areas(_Panel, bpy.types.Panel):
 
 class SHEETGEN_PT_loads(_Panel, bpy.types.Panel):
     bl_label = "Loads"
+    bl_idname = "SHEETGEN_PT_loads"
     bl_parent_id = "SHEETGEN_PT_main"
 
     def draw(self, context):
@@ -107,8 +135,25 @@ class SHEETGEN_PT_loads(_Panel, bpy.types.Panel):
         if obj is not None and obj.sheetgen.is_load:
             s = obj.sheetgen
             layout.label(text=obj.name, icon='CUBE')
-            layout.prop(s, "force", text="Force (N)")
-            layout.prop(s, "moment", text="Moment (N·m)")
+            layout.row().prop(s, "own_cases", expand=True)
+            if s.own_cases == 'FORCE':
+                layout.prop(s, "force", text="Force (N)")
+                layout.prop(s, "moment", text="Moment (N·m)")
+            elif s.own_cases == 'CASES':
+                self.draw_cases(layout, s)
+            else:
+                layout.label(text="Cases: the envelope's, for the box's mass", icon='INFO')
+            col = layout.column(align=True)
+            _optional(col, s, "use_mass", "mass", "Mass (kg)")
+            if s.use_mass:
+                _optional(col, s, "use_center_of_mass", "center_of_mass", "Centre of mass (m)")
+                row = col.row(align=True)
+                row.prop(s, "use_inertia", text="Inertia (kg·m²)")
+                if s.use_inertia:
+                    for r in range(3):
+                        row = col.row(align=True)
+                        for c in range(3):
+                            row.prop(s, "inertia", index=3 * r + c, text="")
             d = obj.dimensions
             layout.label(text="Box %.4g × %.4g × %.4g m" % (d[0], d[1], d[2]))
             layout.operator("sheetgen.load_clear", icon='X')
@@ -116,6 +161,59 @@ class SHEETGEN_PT_loads(_Panel, bpy.types.Panel):
             layout.operator("sheetgen.load_make", icon='ORIENTATION_GLOBAL')
         names = [o.name for o in context.scene.objects if o.sheetgen.is_load]
         layout.label(text="Loads in scene: %s" % (", ".join(names) if names else "none"))
+
+    @staticmethod
+    def draw_cases(layout, s):
+        row = layout.row()
+        row.template_list("SHEETGEN_UL_load_cases", "", s, "cases", s, "case_index", rows=3)
+        col = row.column(align=True)
+        col.operator("sheetgen.load_case_add", icon='ADD', text="")
+        col.operator("sheetgen.load_case_remove", icon='REMOVE', text="")
+        if 0 <= s.case_index < len(s.cases):
+            c = s.cases[s.case_index]
+            col = layout.column(align=True)
+            col.prop(c, "force", text="Force (N)")
+            col.prop(c, "moment", text="Moment (N·m)")
+            _optional(col, c, "use_max_deflection", "max_deflection_mm", "Max deflection (mm)")
+
+
+class SHEETGEN_PT_envelope(_Panel, bpy.types.Panel):
+    bl_label = "Envelope"
+    bl_parent_id = "SHEETGEN_PT_loads"
+    bl_options = {'DEFAULT_CLOSED'}
+
+    def draw_header(self, context):
+        self.layout.prop(context.scene.sheetgen, "use_envelope", text="")
+
+    def draw(self, context):
+        from .core import model
+        p = context.scene.sheetgen
+        layout = self.layout
+        layout.active = p.use_envelope
+        layout.label(text="Inertia cases of every load with a mass")
+        col = layout.column(align=True)
+        col.prop(p, "envelope_forward", text="Forward")
+        col.prop(p, "envelope_up", text="Up")
+        layout.row().prop(p, "envelope_kind", expand=True)
+        if p.envelope_kind == 'PRESET':
+            col = layout.column(align=True)
+            for name, g in model.PRESETS[model.PRESET_FAR25_561]:
+                col.label(text="%s  (%g, %g, %g)" % ((name,) + tuple(g)))
+            layout.operator("sheetgen.envelope_factors_from_preset", icon='DUPLICATE', text="Edit as List")
+            return
+        row = layout.row()
+        row.template_list("SHEETGEN_UL_factors", "", p, "envelope_factors", p, "envelope_factor_index", rows=3)
+        col = row.column(align=True)
+        col.operator("sheetgen.envelope_factor_add", icon='ADD', text="")
+        col.operator("sheetgen.envelope_factor_remove", icon='REMOVE', text="")
+        if 0 <= p.envelope_factor_index < len(p.envelope_factors):
+            f = p.envelope_factors[p.envelope_factor_index]
+            col = layout.column(align=True)
+            col.label(text="g along forward, left, up:")
+            row = col.row(align=True)
+            for i, axis in enumerate(("Fwd", "Left", "Up")):
+                row.prop(f, "g", index=i, text=axis)
+            _optional(col, f, "use_max_deflection", "max_deflection_mm", "Max deflection (mm)")
 
 
 class SHEETGEN_PT_material(_Panel, bpy.types.Panel):
@@ -143,6 +241,9 @@ class SHEETGEN_PT_requirements(_Panel, bpy.types.Panel):
         col.prop(p, "max_deflection_mm" if p.stiffness_limit == 'DEFLECTION' else "max_compliance")
         for key in ("min_margin_of_safety", "safety_factor", "clearance_mm"):
             col.prop(p, key)
+        col.separator()
+        _optional(col, p, "use_min_buckling_factor", "min_buckling_factor", "Min buckling factor")
+        _optional(col, p, "use_min_frequency", "min_frequency_hz", "Min frequency (Hz)")
 
 
 class SHEETGEN_PT_search(_Panel, bpy.types.Panel):
@@ -208,14 +309,24 @@ class SHEETGEN_PT_results(_Panel, bpy.types.Panel):
                     row.alert = values["margin_of_safety"] < context.scene.sheetgen.min_margin_of_safety
                 row.label(text=label)
                 row.label(text=text)
+            rows = core_result.envelope_rows(part)
+            if rows:
+                col = box.column(align=True)
+                for label, text, alert in rows:
+                    row = col.split(factor=0.45)
+                    row.alert = alert
+                    row.label(text=label)
+                    row.label(text=text)
+                box.operator("sheetgen.show_modes", icon='SHAPEKEY_DATA').load = part.get("load", "")
         row = layout.row(align=True)
         row.operator("sheetgen.export_results", icon='EXPORT', text="Export")
         row.operator("sheetgen.generate", icon='FILE_REFRESH', text="Re-run")
         layout.operator("sheetgen.render", icon='RENDER_STILL')
 
 
-CLASSES = (SHEETGEN_UL_rivet_areas, SHEETGEN_PT_main, SHEETGEN_PT_rivet_areas, SHEETGEN_PT_loads,
-           SHEETGEN_PT_material, SHEETGEN_PT_requirements, SHEETGEN_PT_search, SHEETGEN_PT_results)
+CLASSES = (SHEETGEN_UL_rivet_areas, SHEETGEN_UL_load_cases, SHEETGEN_UL_factors, SHEETGEN_PT_main,
+           SHEETGEN_PT_rivet_areas, SHEETGEN_PT_loads, SHEETGEN_PT_envelope, SHEETGEN_PT_material,
+           SHEETGEN_PT_requirements, SHEETGEN_PT_search, SHEETGEN_PT_results)
 
 
 def register():

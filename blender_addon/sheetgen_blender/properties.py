@@ -33,14 +33,47 @@ class SheetgenRivetArea(bpy.types.PropertyGroup):
     area_id: IntProperty(name="Id", min=1, description="Value of the sheetgen_rivet_area face attribute for this area")
     area_m2: FloatProperty(name="Area", precision=6, description="World-space area in m² (refresh after transforms)")
     face_count: IntProperty(name="Faces", description="Number of faces (polygons) tagged with this area")
+    problem_order: IntProperty(default=0, description="Position in the imported problem's rivet_areas (0: none); "
+                                                      "exported in that order")
     color: FloatVectorProperty(name="Colour", subtype='COLOR_GAMMA', size=3, min=0.0, max=1.0,
                                default=(1.0, 0.3, 0.1),
                                update=_recolor, description="Viewport colour of the area's faces")
 
 
+def _update_own(self, context):
+    from . import loads
+    obj = self.id_data
+    if isinstance(obj, bpy.types.Object) and self.is_load:
+        loads.update_arrow(obj)
+
+
+class SheetgenLoadCase(bpy.types.PropertyGroup):
+    """One explicit case of a load (``loads[i].cases[k]``); ``name`` comes with PropertyGroup."""
+    force: FloatVectorProperty(name="Force", size=3, subtype='XYZ', default=(0.0, 0.0, -100.0), precision=3,
+                               description="Force on the centre of mass, N, world axes")
+    moment: FloatVectorProperty(name="Moment", size=3, subtype='XYZ', default=(0.0, 0.0, 0.0), precision=3,
+                                description="Moment about the centre of mass, N·m, world axes")
+    use_max_deflection: BoolProperty(name="Own max deflection", default=False,
+                                     description="This case has its own stiffness limit")
+    max_deflection_mm: FloatProperty(name="Max deflection (mm)", default=1.0, min=1e-9, precision=3,
+                                     description="This case's deflection limit along its force, mm")
+
+
+class SheetgenFactor(bpy.types.PropertyGroup):
+    """One acceleration of the envelope (``load_cases.factors[k]``); ``name`` comes with PropertyGroup."""
+    g: FloatVectorProperty(name="g", size=3, default=(0.0, 0.0, -1.0), precision=3,
+                           description="Load factor along the aircraft's forward, left, up axes, in g (9.80665 m/s²)")
+    use_max_deflection: BoolProperty(name="Own max deflection", default=False,
+                                     description="The cases of this factor have their own stiffness limit")
+    max_deflection_mm: FloatProperty(name="Max deflection (mm)", default=1.0, min=1e-9, precision=3,
+                                     description="Deflection limit of this factor's cases along the force, mm")
+
+
 class SheetgenObjectSettings(bpy.types.PropertyGroup):
     rivet_areas: CollectionProperty(type=SheetgenRivetArea)
     rivet_area_index: IntProperty(name="Active rivet area", default=0)
+    problem_order: IntProperty(default=0, description="Position of this mesh or load in the imported problem (0: "
+                                                      "none); exported in that order, then the others by name")
     exclude: BoolProperty(name="Not in environment", default=False,
                           description="Leave this mesh out of the environment (not an obstacle, no rivet areas)")
     is_load: BoolProperty(name="Load", default=False, description="This box is a load that a bracket must hold")
@@ -48,6 +81,25 @@ class SheetgenObjectSettings(bpy.types.PropertyGroup):
                                update=_update_arrow, description="Force on the box centroid, N, world axes")
     moment: FloatVectorProperty(name="Moment", size=3, subtype='XYZ', default=(0.0, 0.0, 0.0), precision=3,
                                 description="Moment about the box centroid, N·m, world axes")
+    own_cases: EnumProperty(name="Cases", default='FORCE', update=_update_own, items=[
+        ('FORCE', "Force", "One case named 'design': the force and moment below"),
+        ('CASES', "Cases", "A list of named cases, each applied separately"),
+        ('NONE', "Envelope only", "No case of its own: the box's mass under the envelope's factors")])
+    cases: CollectionProperty(type=SheetgenLoadCase)
+    case_index: IntProperty(name="Active case", default=0)
+    use_mass: BoolProperty(name="Mass", default=False,
+                           description="The box has a mass: it gets the envelope's cases and counts in the frequencies")
+    mass: FloatProperty(name="Mass (kg)", default=1.0, min=1e-9, precision=3, description="Mass of the box, kg")
+    use_center_of_mass: BoolProperty(name="Centre of mass", default=False,
+                                     description="Give the centre of mass (default: the box centroid)")
+    center_of_mass: FloatVectorProperty(name="Centre of mass", size=3, subtype='XYZ', precision=4,
+                                        description="Centre of mass, m, world; inside the box. It does not follow "
+                                                    "the box when the box moves")
+    use_inertia: BoolProperty(name="Inertia", default=False,
+                              description="Give the inertia tensor (default: the uniform box's)")
+    inertia: FloatVectorProperty(name="Inertia", size=9, precision=6, default=(1, 0, 0, 0, 1, 0, 0, 0, 1),
+                                 description="Inertia tensor about the centre of mass, kg·m², world axes, rows "
+                                             "of 3")
     arrow: PointerProperty(type=bpy.types.Object, name="Force arrow")
     is_arrow: BoolProperty(default=False, description="Force arrow drawn for a load (not part of the problem)")
 
@@ -80,6 +132,28 @@ class SheetgenSceneSettings(bpy.types.PropertyGroup):
     safety_factor: FloatProperty(name="Safety factor", default=_R.safety_factor, min=1e-6, precision=3)
     clearance_mm: FloatProperty(name="Clearance (mm)", default=_R.clearance * 1e3, min=0.0, precision=3,
                                 description="Gap kept beyond t/2 between the sheet and any obstacle, mm")
+    use_min_buckling_factor: BoolProperty(name="Min buckling factor", default=False,
+                                          description="Set the lowest buckling factor allowed over the cases "
+                                                      "(off: the safety factor)")
+    min_buckling_factor: FloatProperty(name="Min buckling factor", default=1.5, min=1e-6, precision=3,
+                                       description="Lowest linear buckling factor over the cases")
+    use_min_frequency: BoolProperty(name="Frequency floor", default=False,
+                                    description="Require a lowest first natural frequency (off: none)")
+    min_frequency_hz: FloatProperty(name="Min frequency (Hz)", default=25.0, min=1e-6, precision=2,
+                                    description="Floor on the part's first natural frequency with the box's mass, Hz")
+    # envelope (problem-level load_cases)
+    use_envelope: BoolProperty(name="Envelope", default=False,
+                               description="Inertia cases for every load with a mass (the problem's load_cases)")
+    envelope_forward: FloatVectorProperty(name="Forward", size=3, subtype='XYZ', default=(1.0, 0.0, 0.0),
+                                          precision=4, description="The aircraft's forward direction in the scene")
+    envelope_up: FloatVectorProperty(name="Up", size=3, subtype='XYZ', default=(0.0, 0.0, 1.0), precision=4,
+                                     description="The aircraft's up direction in the scene (orthogonal to forward)")
+    envelope_kind: EnumProperty(name="Factors", default='PRESET', items=[
+        ('PRESET', "FAR/CS 25.561", "Emergency landing: 9 g forward, 1.5 g rearward, 3 g to either side, 6 g down, "
+                                   "3 g up (ultimate, each separately)"),
+        ('LIST', "List", "Your own list of factors")])
+    envelope_factors: CollectionProperty(type=SheetgenFactor)
+    envelope_factor_index: IntProperty(name="Active factor", default=0)
     # search
     chains: IntProperty(name="Chains", default=_S.chains, min=1, max=1024)
     iterations: IntProperty(name="Iterations", default=_S.iterations, min=0, max=10000000)
@@ -98,7 +172,7 @@ class SheetgenSceneSettings(bpy.types.PropertyGroup):
     result_load_index: IntProperty(name="Load", default=0, min=0, description="Load shown in the Results panel")
 
 
-CLASSES = (SheetgenRivetArea, SheetgenObjectSettings, SheetgenSceneSettings)
+CLASSES = (SheetgenRivetArea, SheetgenLoadCase, SheetgenFactor, SheetgenObjectSettings, SheetgenSceneSettings)
 
 
 def register():

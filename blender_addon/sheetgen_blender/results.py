@@ -60,6 +60,10 @@ def flat_material():
     return _material("sheetgen flat", (0.70, 0.74, 0.80), metallic=0.6, roughness=0.45)
 
 
+def modes_material():
+    return _material("sheetgen modes", (0.30, 0.62, 0.95), roughness=0.5)
+
+
 def mesh_from_plain(name, plain):
     """A Blender mesh from core.result.MeshPlain, with the bend edges in BEND_ATTR and as seams."""
     me = bpy.data.meshes.new(name)
@@ -177,3 +181,37 @@ def run_files(col):
     if col is None or KEY_FILES not in col:
         return {}
     return {k: str(v) for k, v in col[KEY_FILES].items()}
+
+
+MODES_SUFFIX = " modes"
+KEY_MODES = "sheetgen_modes"       # object property: the modes' one-line summary
+
+
+def build_modes(col, load, plain, thickness):
+    """``<load> modes`` in the run collection: the FEM mesh (core.modes.ModesMesh) with a Basis and one shape key
+    per mode (slider -1..1, value 0), Solidify to the thickness; an earlier one is replaced. The bent part is
+    hidden in the viewport (both would show the same sheet at value 0). Returns the object."""
+    import numpy as np
+    name = load + MODES_SUFFIX
+    old = col.objects.get(name)
+    if old is not None:
+        me_old = old.data
+        bpy.data.objects.remove(old, do_unlink=True)
+        if me_old is not None and me_old.users == 0:
+            bpy.data.meshes.remove(me_old)
+    me = bpy.data.meshes.new(name)
+    me.from_pydata(plain.vertices, [], [list(t) for t in plain.triangles])
+    me.update()
+    part = col.objects.get("%s part" % load)
+    run = part.get("sheetgen_run", 0) if part is not None else 0
+    obj = _object(name, me, col, modes_material(), run, load)
+    _solidify(obj, thickness)
+    obj.shape_key_add(name="Basis", from_mix=False)
+    for k in plain.keys:
+        key = obj.shape_key_add(name=k.name, from_mix=False)
+        key.data.foreach_set("co", np.asarray(k.positions, dtype=np.float32).reshape(-1))
+        key.slider_min, key.slider_max, key.value = -1.0, 1.0, 0.0
+    obj[KEY_MODES] = plain.summary
+    if part is not None and part.name in bpy.context.view_layer.objects:
+        part.hide_set(True)
+    return obj

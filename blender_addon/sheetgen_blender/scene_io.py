@@ -16,7 +16,10 @@ from mathutils import Quaternion, Vector
 from . import loads, tagging
 from .core import model
 from .core.geometry import rivet_area_areas, shortest_float32, shortest_float32_list
-from .core.model import LoadData, MeshData, SceneData, Settings
+from .core.model import Envelope, FactorData, LoadCaseData, LoadData, MeshData, SceneData, Settings
+
+_OWN_TO_CORE = {'FORCE': model.OWN_FORCE, 'CASES': model.OWN_CASES, 'NONE': model.OWN_NONE}
+_OWN_FROM_CORE = {v: k for k, v in _OWN_TO_CORE.items()}
 
 
 # ---------------------------------------------------------------------------
@@ -61,8 +64,9 @@ def read_mesh(obj, clean=True):
         else:
             face_areas = [0] * nt
         names = {a.area_id: a.name for a in obj.sheetgen.rivet_areas}
+        order = {a.area_id: a.problem_order for a in obj.sheetgen.rivet_areas if a.problem_order}
         return MeshData(name=obj.name, vertices=vertices, triangles=tris.reshape(nt, 3).tolist(),
-                        face_areas=face_areas, area_names=names)
+                        face_areas=face_areas, area_names=names, area_order=order)
     finally:
         if temporary:
             bpy.data.meshes.remove(me)
@@ -86,13 +90,20 @@ def is_environment(obj, view_layer):
             and obj.visible_get(view_layer=view_layer))
 
 
+def _problem_order(o):
+    """An imported problem's order first (the solver then numbers meshes and loads, and result.json lists the
+    parts, as the file did), then the others by name."""
+    k = o.sheetgen.problem_order
+    return (k == 0, k, o.name)
+
+
 def environment_objects(scene, view_layer):
-    return sorted((o for o in scene.objects if is_environment(o, view_layer)), key=lambda o: o.name)
+    return sorted((o for o in scene.objects if is_environment(o, view_layer)), key=_problem_order)
 
 
 def load_objects(scene, view_layer):
     return sorted((o for o in scene.objects if o.sheetgen.is_load and o.visible_get(view_layer=view_layer)),
-                  key=lambda o: o.name)
+                  key=_problem_order)
 
 
 def read_load(obj):
@@ -113,9 +124,36 @@ def read_load(obj):
         rot.negate()
     center = mw @ ((lo + hi) * 0.5)
     size = [(hi[i] - lo[i]) * abs(scale[i]) for i in range(3)]
-    return LoadData(name=obj.name, center=shortest_float32_list(center), size=shortest_float32_list(size),
-                    rotation=shortest_float32_list(rot), force=shortest_float32_list(obj.sheetgen.force),
-                    moment=shortest_float32_list(obj.sheetgen.moment))
+    s = obj.sheetgen
+    ld = LoadData(name=obj.name, center=shortest_float32_list(center), size=shortest_float32_list(size),
+                  rotation=shortest_float32_list(rot), force=shortest_float32_list(s.force),
+                  moment=shortest_float32_list(s.moment), own=_OWN_TO_CORE[s.own_cases])
+    ld.cases = [LoadCaseData(name=c.name, force=shortest_float32_list(c.force), moment=shortest_float32_list(c.moment),
+                             max_deflection=_si(c.max_deflection_mm, 1e-3) if c.use_max_deflection else None)
+                for c in s.cases]
+    if s.use_mass:
+        ld.mass = _si(s.mass, 1)
+        if s.use_center_of_mass:
+            ld.center_of_mass = shortest_float32_list(s.center_of_mass)
+        if s.use_inertia:
+            i = shortest_float32_list(s.inertia)
+            ld.inertia = [i[0:3], i[3:6], i[6:9]]
+    return ld
+
+
+def read_envelope(p):
+    """The scene's envelope (``load_cases``) as core data, or None when it is off."""
+    if not p.use_envelope:
+        return None
+    env = Envelope(forward=shortest_float32_list(p.envelope_forward), up=shortest_float32_list(p.envelope_up))
+    if p.envelope_kind == 'PRESET':
+        env.preset = model.PRESET_FAR25_561
+    else:
+        env.preset = None
+        env.factors = [FactorData(name=f.name, g=shortest_float32_list(f.g),
+                                  max_deflection=_si(f.max_deflection_mm, 1e-3) if f.use_max_deflection else None)
+                       for f in p.envelope_factors]
+    return env
 
 
 def _si(value, factor):
@@ -131,7 +169,9 @@ def read_settings(scene):
                                 ultimate_strength=_si(p.ultimate_strength_mpa, 1e6),
                                 thickness=_si(p.thickness_mm, 1e-3))
     r = model.Requirements(min_margin_of_safety=_si(p.min_margin_of_safety, 1), safety_factor=_si(p.safety_factor, 1),
-                           clearance=_si(p.clearance_mm, 1e-3))
+                           clearance=_si(p.clearance_mm, 1e-3),
+                           min_buckling_factor=_si(p.min_buckling_factor, 1) if p.use_min_buckling_factor else None,
+                           min_frequency_hz=_si(p.min_frequency_hz, 1) if p.use_min_frequency else None)
     if p.stiffness_limit == 'DEFLECTION':
         r.max_deflection, r.max_compliance = _si(p.max_deflection_mm, 1e-3), None
     else:
@@ -140,6 +180,7 @@ def read_settings(scene):
     s.search = model.Search(chains=p.chains, iterations=p.iterations, beam_width=p.beam_width, seed=p.seed,
                             alpha=_si(p.alpha, 1), beta=_si(p.beta, 1), scene_unit=_si(p.scene_unit, 1),
                             threads=p.threads)
+    s.load_cases = read_envelope(p)
     import json
     try:
         s.manufacturing = json.loads(p.manufacturing_json or "{}")
@@ -186,10 +227,61 @@ def write_settings(scene, s):
     p.min_margin_of_safety = r.min_margin_of_safety
     p.safety_factor = r.safety_factor
     p.clearance_mm = r.clearance * 1e3
+    p.use_min_buckling_factor = r.min_buckling_factor is not None
+    if r.min_buckling_factor is not None:
+        p.min_buckling_factor = r.min_buckling_factor
+    p.use_min_frequency = r.min_frequency_hz is not None
+    if r.min_frequency_hz is not None:
+        p.min_frequency_hz = r.min_frequency_hz
+    write_envelope(p, s.load_cases)
     for key in ("chains", "iterations", "beam_width", "seed", "alpha", "beta", "scene_unit", "threads"):
         setattr(p, key, getattr(s.search, key))
     import json
     p.manufacturing_json = json.dumps(s.manufacturing or {})
+
+
+def write_envelope(p, env):
+    """The scene's envelope properties from core data (None: off)."""
+    p.use_envelope = env is not None
+    p.envelope_factors.clear()
+    if env is None:
+        return
+    p.envelope_forward = env.forward
+    p.envelope_up = env.up
+    p.envelope_kind = 'PRESET' if env.preset is not None else 'LIST'
+    for f in env.factors:
+        item = p.envelope_factors.add()
+        item.name = f.name
+        item.g = f.g
+        item.use_max_deflection = f.max_deflection is not None
+        if f.max_deflection is not None:
+            item.max_deflection_mm = f.max_deflection * 1e3
+
+
+def write_load_settings(obj, ld):
+    """A load object's cases and mass properties from core data (the force arrow is updated by the caller)."""
+    s = obj.sheetgen
+    s["force"] = list(ld.force)   # set without the update callback; the arrow comes next
+    s.moment = ld.moment
+    s.own_cases = _OWN_FROM_CORE[ld.own]   # no arrow yet (not a load yet): the update does nothing
+    s.cases.clear()
+    for c in ld.cases:
+        item = s.cases.add()
+        item.name = c.name
+        item.force = c.force
+        item.moment = c.moment
+        item.use_max_deflection = c.max_deflection is not None
+        if c.max_deflection is not None:
+            item.max_deflection_mm = c.max_deflection * 1e3
+    s.use_mass = ld.mass is not None
+    if ld.mass is not None:
+        s.mass = ld.mass
+    s.use_center_of_mass = ld.center_of_mass is not None
+    if ld.center_of_mass is not None:
+        s.center_of_mass = ld.center_of_mass
+    s.use_inertia = ld.inertia is not None
+    if ld.inertia is not None:
+        s.inertia = [x for row in ld.inertia for x in row]
 
 
 def build_mesh_object(md, collection):
@@ -219,6 +311,7 @@ def build_mesh_object(md, collection):
             item = obj.sheetgen.rivet_areas.add()
             item.area_id = k
             item.name = md.area_names[k]
+            item.problem_order = md.area_order.get(k, 0)
             item["color"] = tagging.palette(k)
         tagging.recolor(obj)
         refresh_area_stats(obj)
@@ -239,8 +332,7 @@ def build_load_object(ld, collection):
     obj.scale = ld.size
     obj.location = ld.center
     obj.display_type = 'WIRE'
-    obj.sheetgen["force"] = list(ld.force)   # set without the update callback; the arrow comes next
-    obj.sheetgen.moment = ld.moment
+    write_load_settings(obj, ld)
     loads.make_load(obj, collection)
     return obj
 
@@ -251,6 +343,10 @@ def build_scene(scene, data, collection_name=None):
     scene.collection.children.link(col)
     meshes = [build_mesh_object(md, col) for md in data.meshes]
     load_objs = [build_load_object(ld, col) for ld in data.loads]
+    for i, obj in enumerate(meshes):
+        obj.sheetgen.problem_order = i + 1
+    for i, obj in enumerate(load_objs):
+        obj.sheetgen.problem_order = i + 1
     write_settings(scene, data.settings)
     scene.sheetgen.problem_name = data.name
     scene.sheetgen.description = data.description

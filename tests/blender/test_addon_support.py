@@ -103,3 +103,56 @@ def make_box_load(name="box", location=(0.5, 0.5, 0.3), force=(0, 0, -100)):
     bpy.ops.sheetgen.load_make()
     box.sheetgen.force = force
     return box
+
+
+def build_dir():
+    """The BUILD_DIR tests/blender/run.py was given: where the native module was loaded from."""
+    import sheetgen_blender.native as native
+    return os.path.dirname(os.path.dirname(native.get().__file__))
+
+
+CORNER = os.path.join(ROOT, "sample_scenes", "corner")
+
+
+def write_envelope_problems(folder):
+    """Three problem files in the format of issue 33 (docs/problem-format.md "Load cases"), made from the corner
+    sample with its box's force replaced by a mass of 4.0 kg: {"preset": the far25.561 envelope with a buckling
+    factor and a frequency floor, "factors": an explicit factor list (one with its own max_deflection),
+    "cases": explicit cases of the box (one with its own max_deflection) with its centre of mass and inertia, a
+    3 mm deflection limit and a 15 Hz frequency floor, which a small search (2 chains, 100 iterations, beam 2)
+    meets}. The OBJ meshes are copied beside them. Returns {name: path}."""
+    import copy
+    import json
+    import shutil
+    with open(os.path.join(CORNER, "problem.json"), encoding="utf-8") as f:
+        base = json.load(f)
+    for m in base["environment"]["meshes"]:
+        shutil.copy(os.path.join(CORNER, m["file"]), os.path.join(folder, m["file"]))
+    ld = base["loads"][0]
+    del ld["force"], ld["moment"]
+    ld["mass"] = 4.0
+    problems = {}
+    p = copy.deepcopy(base)
+    p["load_cases"] = {"forward": [1, 0, 0], "up": [0, 0, 1], "factors": "far25.561"}
+    p["requirements"].update({"min_buckling_factor": 1.5, "min_frequency_hz": 25})
+    problems["preset"] = p
+    p = copy.deepcopy(base)
+    p["load_cases"] = {"forward": [0, -1, 0], "up": [0, 0, 1],
+                       "factors": [{"name": "forward 9 g", "g": [9, 0, 0]},
+                                   {"name": "down 6 g", "g": [0, 0, -6], "max_deflection": 3e-3},
+                                   {"name": "side 3 g", "g": [0, 3, 1]}]}
+    problems["factors"] = p
+    p = copy.deepcopy(base)
+    p["loads"][0].update({"center_of_mass": [0.27, 0.01, 0.33],
+                          "inertia": [[0.0068, 0, 0], [0, 0.0107, 0], [0, 0, 0.0133]],
+                          "cases": [{"name": "connector pull", "force": [0, -200, 0]},
+                                    {"name": "handling", "force": [0, 0, -150], "moment": [0, 4, 0],
+                                     "max_deflection": 2e-3}]})
+    p["requirements"].update({"max_deflection": 3e-3, "min_frequency_hz": 15})
+    problems["cases"] = p
+    paths = {}
+    for name, p in problems.items():
+        paths[name] = os.path.join(folder, name + ".json")
+        with open(paths[name], "w", encoding="utf-8") as f:
+            json.dump(p, f, indent=1)
+    return paths
