@@ -43,8 +43,8 @@ def parser(default_sheetgen):
     ap.add_argument("--sheetgen", default=default_sheetgen, metavar="PATH",
                     help=f"the sheetgen binary, at the same path on every worker (default {default_sheetgen})")
     search = ap.add_argument_group("search settings, passed to every `sheetgen solve` (default: each problem's own)")
-    for flag, kind in (("--seed", int), ("--chains", int), ("--iterations", int), ("--beam", int)):
-        search.add_argument(flag, type=kind)
+    for flag, metavar in (("--seed", "S"), ("--chains", "M"), ("--iterations", "N"), ("--beam", "B")):
+        search.add_argument(flag, type=int, metavar=metavar)
     for flag in ("--right-angles", "--flat-extensions", "--no-self-rivet", "--no-lips", "--no-web-roots", "--no-flat-fallback"):
         search.add_argument(flag, action="store_true")
     return ap
