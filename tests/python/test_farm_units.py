@@ -55,6 +55,7 @@ class Plan(unittest.TestCase):
         for k, v in changes.items():
             setattr(record, k, v)
         write(os.path.join(self.out, "corner", task.RECORD_FILE), json.dumps(record.to_json()))
+        write(os.path.join(self.out, "corner", "result.json"), "{}")
 
     def test_work_is_loads_chains_iterations(self):
         [p] = plan.plan([self.problem], self.out, self.solve)
@@ -83,6 +84,11 @@ class Plan(unittest.TestCase):
 
     def test_resume_solves_a_failed_problem_again(self):
         self.finish(status="failed")
+        self.assertIsNone(plan.plan([self.problem], self.out, self.solve)[0].done)
+
+    def test_resume_solves_a_problem_whose_result_json_is_gone(self):
+        self.finish()
+        os.remove(os.path.join(self.out, "corner", "result.json"))
         self.assertIsNone(plan.plan([self.problem], self.out, self.solve)[0].done)
 
     def test_second_run_on_the_same_folder_is_refused(self):

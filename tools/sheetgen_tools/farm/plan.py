@@ -104,9 +104,11 @@ def plan(problems, out_root, solve, force=False):
         if not p.unreadable:
             p.inputs_sha256 = inputs_sha256(path, doc)
             p.work = _work(doc, solve)
-            earlier = farm_task.read_record(os.path.join(out_root, name))
+            folder = os.path.join(out_root, name)
+            earlier = farm_task.read_record(folder)
             if (not force and earlier is not None and earlier.status == "solved"
-                    and earlier.inputs_sha256 == p.inputs_sha256 and earlier.settings == settings):
+                    and earlier.inputs_sha256 == p.inputs_sha256 and earlier.settings == settings
+                    and os.path.isfile(os.path.join(folder, "result.json"))):
                 p.done = earlier
         by_name[name] = p
         planned.append(p)
