@@ -13,8 +13,6 @@ import json
 import os
 from typing import Optional
 
-from . import task as farm_task
-
 
 @dataclasses.dataclass
 class Row:
@@ -148,7 +146,3 @@ def exit_code(rows, interrupted):
     if c.get("failed") or c.get("cancelled"):
         return 3
     return 2 if c.get("no part") else 0
-
-
-def record_of_folder(out_root, name):
-    return farm_task.read_record(os.path.join(out_root, name))
