@@ -146,14 +146,16 @@ class SHEETGEN_PT_loads(_Panel, bpy.types.Panel):
             col = layout.column(align=True)
             _optional(col, s, "use_mass", "mass", "Mass (kg)")
             if s.use_mass:
-                _optional(col, s, "use_center_of_mass", "center_of_mass", "Centre of mass (m)")
-                row = col.row(align=True)
-                row.prop(s, "use_inertia", text="Inertia (kg·m²)")
+                col.prop(s, "use_center_of_mass", text="Centre of mass (m, world)")
+                if s.use_center_of_mass:
+                    col.prop(s, "center_of_mass", text="")
+                col.prop(s, "use_inertia", text="Inertia (kg·m², world)")
                 if s.use_inertia:
                     for r in range(3):
                         row = col.row(align=True)
                         for c in range(3):
                             row.prop(s, "inertia", index=3 * r + c, text="")
+                    col.separator()
             d = obj.dimensions
             layout.label(text="Box %.4g × %.4g × %.4g m" % (d[0], d[1], d[2]))
             layout.operator("sheetgen.load_clear", icon='X')
@@ -312,8 +314,9 @@ class SHEETGEN_PT_results(_Panel, bpy.types.Panel):
             rows = core_result.envelope_rows(part)
             if rows:
                 col = box.column(align=True)
+                col.label(text="Envelope (governing cases):")
                 for label, text, alert in rows:
-                    row = col.split(factor=0.45)
+                    row = col.split(factor=0.38)
                     row.alert = alert
                     row.label(text=label)
                     row.label(text=text)

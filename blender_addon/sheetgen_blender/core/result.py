@@ -372,8 +372,8 @@ def _case(envelope, name):
 
 def envelope_rows(part):
     """[(label, text, alert)] of the Results panel for a part's envelope: the governing case of each check
-    (stiffness: largest C/C_max; strength: lowest MS; buckling: lowest factor), the buckling factor and the
-    natural frequencies. ``alert`` marks a number that misses the problem's requirement. [] without an envelope
+    (rows "Stiffness": largest C/C_max; "Strength": lowest MS; "Buckling": lowest factor), the buckling factor
+    and the natural frequencies. ``alert`` marks a number that misses the problem's requirement. [] without an envelope
     (a result.json written before load cases)."""
     env = part.get("envelope")
     if not isinstance(env, dict):
@@ -386,33 +386,33 @@ def envelope_rows(part):
     c = _case(env, name)
     if c is not None and c.get("compliance_limit"):
         ratio = c["compliance"] / c["compliance_limit"]
-        rows.append(("Stiffness: governing", "%s (C/C_max %.3f)" % (name, ratio), ratio > 1.0))
+        rows.append(("Stiffness", "%s (C/C_max %.3f)" % (name, ratio), ratio > 1.0))
     else:
-        rows.append(("Stiffness: governing", name or "—", False))
+        rows.append(("Stiffness", name or "—", False))
     name = gov.get("strength")
     c = _case(env, name)
     if c is not None and c.get("margin_of_safety") is not None:
-        rows.append(("Strength: governing", "%s (MS %.3f)" % (name, c["margin_of_safety"]), False))
+        rows.append(("Strength", "%s (MS %.3f)" % (name, c["margin_of_safety"]), False))
     else:
-        rows.append(("Strength: governing", name or "—", False))
+        rows.append(("Strength", name or "—", False))
     factor = env.get("buckling_factor")
     floor = req.get("min_buckling_factor")
     if factor is None:
         # null: nothing compresses the sheet, or the eigen checks were not run (a failed static case)
         text = "none (nothing buckles)" if env.get("eigen_checked") else "not computed"
-        rows.append(("Buckling: governing", gov.get("buckling") or "—", False))
+        rows.append(("Buckling", gov.get("buckling") or "—", False))
         rows.append(("Buckling factor", text, False))
     else:
-        rows.append(("Buckling: governing", gov.get("buckling") or "—", False))
+        rows.append(("Buckling", gov.get("buckling") or "—", False))
         low = checked and floor is not None and factor < floor
         rows.append(("Buckling factor", "%.3f" % factor + (" (min %.3g)" % floor if checked and floor else ""), low))
     freqs = env.get("frequencies_hz") or []
     fmin = req.get("min_frequency_hz")
     if freqs:
         low = checked and fmin is not None and freqs[0] < fmin
-        rows.append(("First frequency (Hz)", "%.1f" % freqs[0] + (" (floor %.3g)" % fmin if fmin else ""), low))
+        rows.append(("1st frequency (Hz)", "%.1f" % freqs[0] + (" (floor %.3g)" % fmin if fmin else ""), low))
         if len(freqs) > 1:
             rows.append(("Frequencies (Hz)", ", ".join("%.1f" % f for f in freqs), False))
     else:
-        rows.append(("First frequency (Hz)", "not computed", False))
+        rows.append(("1st frequency (Hz)", "not computed", False))
     return rows
