@@ -7,6 +7,7 @@
 // split triangles is a few % too stiff) on the same mesh. Full tier (ccx).
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -60,6 +61,8 @@ std::vector<LoadCase> independent_cases(const Load& l) {
   return kept;
 }
 
+double lowest(const std::vector<double>& v) { return v.empty() ? 0.0 : *std::min_element(v.begin(), v.end()); }
+
 void compare_with_calculix(const std::string& scene, const std::string& load, const std::string& fixture) {
   int index = -1;
   Problem p = envelope_problem(scene, load, index);
@@ -79,7 +82,10 @@ void compare_with_calculix(const std::string& scene, const std::string& load, co
   CcxExportOptions co;
   co.element_type = "S8R";
   co.buckle_case = ours.governing_buckling;
-  co.buckling_factors = 1;
+  // Three, not one: asked for one factor, ccx 2.20's *BUCKLE returned the
+  // transponder part's second (1.398 against 0.754); its iteration needs room
+  // beside the wanted eigenvalue. The lowest of the three is compared.
+  co.buckling_factors = 3;
   co.frequency_modes = 1;
   const CcxEnvelope ccx = solve_envelope_with_ccx(pm.model, dir.string(), "envelope", "ccx", co);
   fs::remove_all(dir);
@@ -93,10 +99,10 @@ void compare_with_calculix(const std::string& scene, const std::string& load, co
   }
   std::printf("%s buckling (%s) ours %.5g, ccx %.5g (%+.2f %%); f1 ours %.5g Hz, ccx %.5g Hz (%+.2f %%); ccx %.0f s\n",
               fixture.c_str(), ours.cases[ours.governing_buckling].name.c_str(), ours.buckling_factor,
-              ccx.buckling_factors.at(0), 100 * (ours.buckling_factor / ccx.buckling_factors.at(0) - 1),
+              lowest(ccx.buckling_factors), 100 * (ours.buckling_factor / lowest(ccx.buckling_factors) - 1),
               ours.frequencies_hz.at(0), ccx.frequencies_hz.at(0),
               100 * (ours.frequencies_hz.at(0) / ccx.frequencies_hz.at(0) - 1), ccx.wall_seconds);
-  EXPECT_NEAR(ours.buckling_factor / ccx.buckling_factors.at(0), 1.0, 0.05);
+  EXPECT_NEAR(ours.buckling_factor / lowest(ccx.buckling_factors), 1.0, 0.05);
   EXPECT_NEAR(ours.frequencies_hz.at(0) / ccx.frequencies_hz.at(0), 1.0, 0.05);
 }
 
