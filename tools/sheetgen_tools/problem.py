@@ -1,13 +1,15 @@
-"""Reading a problem (sheetgen-problem/1) with its meshes, for the checks and
-the pictures (independent of the solver's own reader), and the problem
-variants the benchmarks solve."""
+"""Reading a problem (sheetgen-problem/1) with its meshes, its load cases,
+limits and eigen requirements, for the checks and the pictures (independent of
+the solver's own reader), and the problem variants the benchmarks solve."""
 import copy
+import dataclasses
 import json
 import os
+from typing import Optional
 
 import numpy as np
 
-from .geometry import box_mesh
+from .geometry import box_mesh, load_rotation
 
 
 def read_obj(path):
@@ -82,3 +84,118 @@ def one_load_problem(doc, problem_dir, load, thickness, obstacles, path, base_ro
                         f"right angles, the other parts as obstacles (bench/gauge_baseline.py)")
     with open(path, "w") as f:
         json.dump(q, f)
+
+
+# --- Load cases and requirements (docs/problem-format.md "Load cases"), read
+# here from the file itself so that the checks never take them from the solver.
+
+STANDARD_GRAVITY = 9.80665  # m/s^2, the g of the factors
+# 14 CFR / CS 25.561(b)(3): (name, g along (forward, left, up)), in the solver's order.
+FAR25_561 = [("forward 9 g", (9.0, 0.0, 0.0)), ("rearward 1.5 g", (-1.5, 0.0, 0.0)),
+             ("left 3 g", (0.0, 3.0, 0.0)), ("right 3 g", (0.0, -3.0, 0.0)),
+             ("down 6 g", (0.0, 0.0, -6.0)), ("up 3 g", (0.0, 0.0, 3.0))]
+DEFAULT_MAX_DEFLECTION = 1.0e-3  # m, requirements.max_deflection's default
+DEFAULT_SAFETY_FACTOR = 1.5
+
+
+def envelope_axes(load_cases):
+    """(forward, left, up) unit vectors of a problem's `load_cases`: up loses
+    its component along forward (the reader's rule), left = up x forward."""
+    forward = np.asarray(load_cases["forward"], float)
+    forward /= np.linalg.norm(forward)
+    up = np.asarray(load_cases["up"], float)
+    up = up / np.linalg.norm(up)
+    up -= np.dot(up, forward) * forward
+    up /= np.linalg.norm(up)
+    return forward, np.cross(up, forward), up
+
+
+def envelope_factors(load_cases):
+    """The factors of `load_cases` as [(name, g (3,), max_deflection m or None)], the preset expanded."""
+    factors = load_cases["factors"]
+    if factors == "far25.561":
+        return [(name, np.array(g), None) for name, g in FAR25_561]
+    if isinstance(factors, str):
+        raise ValueError(f"load_cases.factors: unknown preset {factors!r}")
+    return [(f["name"], np.asarray(f["g"], float), f.get("max_deflection")) for f in factors]
+
+
+def load_cases(prob, load):
+    """A load's cases in the solver's order: its own (`cases`, or `force`/`moment`
+    as the one case "design"), then, when it has a `mass`, one per factor of the
+    problem's `load_cases`. Each is {"name", "force" N (3,), "moment" N m (3,)
+    about the centre of mass, "max_deflection" m or None}."""
+    cases = []
+    if "cases" in load:
+        for c in load["cases"]:
+            cases.append({"name": c["name"], "force": np.asarray(c.get("force", [0, 0, 0]), float),
+                          "moment": np.asarray(c.get("moment", [0, 0, 0]), float),
+                          "max_deflection": c.get("max_deflection")})
+    elif "force" in load or "moment" in load:
+        cases.append({"name": "design", "force": np.asarray(load.get("force", [0, 0, 0]), float),
+                      "moment": np.asarray(load.get("moment", [0, 0, 0]), float), "max_deflection": None})
+    if "mass" in load and "load_cases" in prob:
+        axes = np.array(envelope_axes(prob["load_cases"]))  # rows: forward, left, up
+        for name, g, max_deflection in envelope_factors(prob["load_cases"]):
+            cases.append({"name": name, "force": load["mass"] * STANDARD_GRAVITY * (g @ axes),
+                          "moment": np.zeros(3), "max_deflection": max_deflection})
+    return cases
+
+
+def compliance_limit(prob, case):
+    """C_max of one case (J): |F| times the case's own max_deflection, else
+    requirements.max_compliance, else |F| times requirements.max_deflection (1 mm)."""
+    req = prob.get("requirements", {})
+    f = float(np.linalg.norm(case["force"]))
+    if case.get("max_deflection") is not None:
+        return f * case["max_deflection"]
+    if "max_compliance" in req:
+        return float(req["max_compliance"])
+    return f * req.get("max_deflection", DEFAULT_MAX_DEFLECTION)
+
+
+@dataclasses.dataclass
+class EigenRequirements:
+    """The buckling and frequency floors of a problem and whether they apply."""
+    checked: bool                     # the file asks for the eigen checks (see eigen_requirements)
+    min_buckling_factor: float        # -, default requirements.safety_factor
+    min_frequency_hz: Optional[float]  # Hz, None: no floor
+
+
+def eigen_requirements(prob):
+    """The rule of the C++ reader (Requirements::eigen_checks, native/sheetgen/core/problem.cpp):
+    the checks apply when the file uses the envelope format (a load with "mass"
+    or "cases", or a top-level "load_cases") or names min_buckling_factor or
+    min_frequency_hz; an old one-force file keeps the checks it was written for."""
+    req = prob.get("requirements", {})
+    checked = ("load_cases" in prob or "min_buckling_factor" in req or "min_frequency_hz" in req
+               or any("mass" in ld or "cases" in ld for ld in prob["loads"]))
+    floor = req.get("min_buckling_factor", req.get("safety_factor", DEFAULT_SAFETY_FACTOR))
+    return EigenRequirements(checked, float(floor), req.get("min_frequency_hz"))
+
+
+def load_mass_properties(load):
+    """(mass kg, centre of mass m (3,), inertia kg m^2 (3, 3) about it, world) of
+    a load with a "mass"; the default inertia is the uniform box's, turned with it."""
+    m = float(load["mass"])
+    centre = np.asarray(load.get("center_of_mass", load["center"]), float)
+    if "inertia" in load:
+        J = np.asarray(load["inertia"], float)
+        return m, centre, 0.5 * (J + J.T)
+    a, b, c = load["size"]
+    R = load_rotation(load)
+    local = np.diag([b * b + c * c, a * a + c * c, a * a + b * b]) * m / 12.0
+    return m, centre, R @ local @ R.T
+
+
+def with_envelope(doc, problem_dir, mass, forward=(1.0, 0.0, 0.0), up=(0.0, 0.0, 1.0), factors="far25.561"):
+    """A copy of a problem document (read from problem_dir; its file meshes made
+    absolute) whose every load is a box of `mass` kg under the envelope
+    `factors` (the FAR 25.561 preset by default) instead of its own force."""
+    q = with_absolute_files(doc, problem_dir)
+    for load in q["loads"]:
+        for key in ("force", "moment", "cases"):
+            load.pop(key, None)
+        load["mass"] = mass
+    q["load_cases"] = {"forward": list(forward), "up": list(up), "factors": factors}
+    return q
