@@ -1,5 +1,5 @@
 #!/usr/bin/python3
-"""The CalculiX stress check (sheetgen_tools.ccx_check) against a closed form.
+"""The CalculiX stress check (sheetgen_tools.ccx_stress) against a closed form.
 
 A clamped strip (100 x 20 mm, 1.6 mm aluminium) carries 1 N at its tip. Beam
 theory gives the surface stress sigma(x) = 6 P (L - x) / (b t^2); the rule
@@ -19,7 +19,7 @@ import unittest
 
 import numpy as np
 
-from sheetgen_tools import ccx_check
+from sheetgen_tools import ccx_stress
 
 
 def grid(origin, du, dv, nu, nv, ids):
@@ -63,7 +63,7 @@ class CalculixStressRule(unittest.TestCase):
                            stderr=subprocess.DEVNULL)
             with open(os.path.join(tmp, "strip.dat")) as f:
                 dat = f.read()
-        sigma, n_singular, n_corners = ccx_check.ccx_max_von_mises(deck, dat, t)
+        sigma, n_singular, n_corners = ccx_stress.ccx_max_von_mises(deck, dat, t)
         # Clamped nodes: the 9 of x = 0; h_p = 2 x 2.5 mm, so the radius is
         # 3.2 + 5 = 8.2 mm and the first kept centres are at x = 8.75 mm.
         self.assertEqual(n_singular, 9)
@@ -79,7 +79,7 @@ class CalculixStressRule(unittest.TestCase):
         leg = grid((0.04, 0.01, 0), (0, h, 0), (0, 0, h), 4, 6, ids)  # y 10..30 mm, folded up at x = 40 mm
         X = np.array(sorted(ids, key=ids.get))
         quads = np.array(quads_of(base) + quads_of(leg))
-        corners = ccx_check._quad_reentrant_corners(quads, X, math.radians(190.0))
+        corners = ccx_stress._quad_reentrant_corners(quads, X, math.radians(190.0))
         got = sorted(tuple(np.round(X[c] * 1e3, 6)) for c in corners)
         self.assertEqual(got, [(40.0, 10.0, 0.0), (40.0, 30.0, 0.0)])
         # Over the whole edge (y 0..40 mm) the fold's ends are 90 + 90 deg: none.
@@ -88,7 +88,7 @@ class CalculixStressRule(unittest.TestCase):
         leg = grid((0.04, 0.0, 0), (0, h, 0), (0, 0, h), 8, 6, ids)
         X = np.array(sorted(ids, key=ids.get))
         quads = np.array(quads_of(base) + quads_of(leg))
-        self.assertEqual(len(ccx_check._quad_reentrant_corners(quads, X, math.radians(190.0))), 0)
+        self.assertEqual(len(ccx_stress._quad_reentrant_corners(quads, X, math.radians(190.0))), 0)
 
 
 if __name__ == "__main__":

@@ -12,8 +12,14 @@ carry the same problem:
   radius of its centre (in the flange's plane, through the thickness) is fixed,
   the radius read off the deck as the farthest clamped shell node of that rivet;
 * the box: the solid nodes of the base plate inside the footprint (the convex
-  hull of the deck's RIGID1 nodes), through the thickness, form the rigid body
-  whose REF node carries the deck's *CLOAD.
+  hull of the box link's shell nodes), through the thickness, form the rigid
+  body whose REF node carries the deck's *CLOAD;
+* the cases: every *STATIC step of the shell deck is one. They all load the
+  box's REF and ROT nodes, so the solid deck solves a linearly independent few
+  of them (the FAR 25.561 six are three directions) and the others are their
+  exact combinations (ccx_deck.independent_cases); ccx factors once per step.
+  The deck's MASSk rigid bodies (the box's mass for *FREQUENCY, docs/fem.md
+  "Rigid masses in CalculiX") play no part in a static solve and are left out.
 
 Why a solid model (docs/fem.md "A solid reference"): on corner_obstacle and the
 right-angle battery CalculiX's S8R (shells expanded to 20-node bricks) is
@@ -33,10 +39,11 @@ farther apart would not touch in the solid and leave the tie out; `SolidNotAppli
 to the shell deck, as it does for a result without the tie points.
 """
 import os
-import re
 import subprocess
 
 import numpy as np
+
+from . import ccx_deck
 
 # gmsh's 10-node tetrahedron numbers its edge nodes (0,1) (1,2) (2,0) (3,0) (3,2) (3,1);
 # CalculiX's C3D10 (as Abaqus) wants (1,2) (2,3) (3,1) (1,4) (2,4) (3,4).
@@ -92,10 +99,12 @@ def mesh_plates(tabs, t, h):
     return coords.reshape(-1, 3), tets
 
 
-def write_deck(path, X, tets, E, nu, fixed, rigid, ref_point, cloads):
+def write_deck(path, X, tets, E, nu, fixed, rigid, ref_point, cloads, further_steps=()):
     """A CalculiX deck: C3D10 solid, `fixed` node indices with u = 0, `rigid`
     node indices tied to a REF node at ref_point carrying `cloads` [(dof 1-6, value)]
-    (forces N on 1-3, moments N m on 4-6). Returns the REF node's id."""
+    (forces N on 1-3, moments N m on 4-6) in a *STATIC step, then one more
+    *STATIC step per entry of `further_steps` (each such a list, OP=NEW).
+    Returns the REF node's id (the ROT node is the next)."""
     ref, rot = len(X) + 1, len(X) + 2
     with open(path, "w") as f:
         f.write("*HEADING\nsheetgen solid reference (tools/sheetgen_tools/solid_reference.py)\n*NODE, NSET=NALL\n")
@@ -107,41 +116,28 @@ def write_deck(path, X, tets, E, nu, fixed, rigid, ref_point, cloads):
         f.write(f"*MATERIAL, NAME=SHEET\n*ELASTIC\n{E:.12g}, {nu:.12g}\n*SOLID SECTION, ELSET=EALL, MATERIAL=SHEET\n")
         f.write("*NSET, NSET=RIGID1\n")
         f.writelines(f"{k + 1},\n" for k in rigid)
-        f.write(f"*RIGID BODY, NSET=RIGID1, REF NODE={ref}, ROT NODE={rot}\n*STEP\n*STATIC\n*BOUNDARY\n")
+        f.write(f"*RIGID BODY, NSET=RIGID1, REF NODE={ref}, ROT NODE={rot}\n*BOUNDARY\n")
         f.writelines(f"{k + 1}, 1, 3\n" for k in fixed)
-        f.write("*CLOAD\n")
-        for dof, value in cloads:
-            f.write(f"{ref if dof <= 3 else rot}, {dof if dof <= 3 else dof - 3}, {value:.12g}\n")
-        f.write("*NODE PRINT, NSET=NALL\nU\n*END STEP\n")
+        for k, step in enumerate([cloads, *further_steps]):
+            f.write("*STEP\n*STATIC\n" + ("*CLOAD\n" if k == 0 else "*CLOAD, OP=NEW\n"))
+            for dof, value in step:
+                f.write(f"{ref if dof <= 3 else rot}, {dof if dof <= 3 else dof - 3}, {value:.12g}\n")
+            f.write("*NODE PRINT, NSET=NALL\nU\n*END STEP\n")
     return ref
 
 
-def run_ccx(deck_path):
-    """Runs ccx on deck_path; returns the displacements {node id: (ux, uy, uz)} m."""
+def run_ccx_steps(deck_path):
+    """Runs ccx on deck_path; returns each static step's displacements [{node id: (ux, uy, uz)} m]."""
     work, name = os.path.split(os.path.abspath(deck_path))
     job = name[:-4] if name.endswith(".inp") else name
     subprocess.run(["ccx", "-i", job], cwd=work, check=True, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
-    disp = {}
     with open(os.path.join(work, job + ".dat")) as f:
-        for line in f:
-            p = line.split()
-            if len(p) == 4 and p[0].isdigit():
-                disp[int(p[0])] = np.array([float(x) for x in p[1:]])
-    return disp
+        return ccx_deck.read_dat(f.read()).static_displacements()
 
 
-def deck_section_lines(text, keyword):
-    """Data lines after the line starting with `keyword`, up to the next keyword line."""
-    m = re.search(r"^" + re.escape(keyword) + r".*$", text, re.M)
-    if m is None:
-        raise ValueError(f"shell deck: no {keyword} section")
-    out = []
-    for line in text[m.end() + 1:].splitlines():
-        if line.startswith("*"):
-            break
-        if line.strip():
-            out.append(line)
-    return out
+def run_ccx(deck_path):
+    """Runs ccx on deck_path; returns the last step's displacements {node id: (ux, uy, uz)} m."""
+    return run_ccx_steps(deck_path)[-1]
 
 
 def _convex_hull(P):
@@ -172,12 +168,11 @@ def _inside_convex(Q, hull, tol):
     return inside
 
 
-def solid_compliance(part, shell_deck, work_dir, h=None):
-    """Compliance (J) and |u| of the load point (m) of `part` (a result.json part)
-    on the solid model, with the supports, box link, loads and material of
-    `shell_deck` (the text of an S4 deck by `sheetgen export-ccx`). Writes
-    solid.inp into work_dir. Returns a dict with C, deflection, nodes, elements, h."""
-    t = float(deck_section_lines(shell_deck, "*SHELL SECTION")[0].split(",")[0]) if shell_deck else 0.0
+def _box_link(part, shell_deck, t):
+    """(REF node, ROT node, member node ids) of the deck's box link, and the
+    static cases' loads as [(dof 1-6, value)] on it; SolidNotApplicable when
+    the deck is not the box link plus one rigid body per self-rivet (the mass
+    stand-ins, MASSk, are the box's inertia for *FREQUENCY and play no part here)."""
     for tie in part.get("self_rivets") or []:
         points = tie.get("points")
         if not points or len(points) != 2:
@@ -187,33 +182,31 @@ def solid_compliance(part, shell_deck, work_dir, h=None):
             raise SolidNotApplicable(f"self-riveted sheets {gap * 1e3:.2f} mm apart would not touch in the fused solid")
     # The box link is the rigid body whose nodes carry the loads; any other is a
     # self-rivet's footprint tie, which the fused solid replaces by its bonded lap.
-    bodies = re.findall(r"^\*RIGID BODY, NSET=(\w+), REF NODE=(\d+), ROT NODE=(\d+)", shell_deck, re.M)
-    load_nodes = {int(line.split(",")[0]) for line in deck_section_lines(shell_deck, "*CLOAD")}
-    box = [b for b in bodies if int(b[1]) in load_nodes or int(b[2]) in load_nodes]
+    bodies = ccx_deck.links(shell_deck)
+    statics = ccx_deck.static_steps(shell_deck)
+    if not statics:
+        raise ValueError("shell deck: no *STATIC step")
+    load_nodes = {n for s in statics for n, _ in s.loads}
+    box = [b for b in bodies if b[1] in load_nodes or b[2] in load_nodes]
     if len(box) != 1 or len(bodies) - 1 > len(part.get("self_rivets") or []):
         raise SolidNotApplicable(f"the deck has {len(bodies)} rigid bodies, not the box link and one per self-rivet")
-    E, nu = (float(x) for x in deck_section_lines(shell_deck, "*ELASTIC")[0].split(",")[:2])
-    h = DEFAULT_SIZE * t if h is None else h
-    nodes = {}
-    for line in deck_section_lines(shell_deck, "*NODE"):
-        a = line.split(",")
-        nodes[int(a[0])] = np.array([float(x) for x in a[1:4]])
-    box_set, ref_id, rot_id = box[0][0], int(box[0][1]), int(box[0][2])
-    rigid_ids = [int(x) for line in deck_section_lines(shell_deck, "*NSET, NSET=" + box_set) for x in line.split(",") if x.strip()]
-    cloads = []
-    for line in deck_section_lines(shell_deck, "*CLOAD"):
-        n, dof, value = line.split(",")
-        n, dof = int(n), int(dof)
-        if n not in (ref_id, rot_id):
-            raise SolidNotApplicable(f"a load on node {n}, not on the box's reference node")
-        cloads.append((dof + (3 if n == rot_id and n != ref_id else 0), float(value)))
-    clamped = sorted({int(line.split(",")[0]) for line in deck_section_lines(shell_deck, "*BOUNDARY")})
+    _, ref_id, rot_id, members = box[0]
+    cases = []
+    for s in statics:
+        loads = []
+        for (n, dof), value in sorted(s.loads.items()):
+            if n not in (ref_id, rot_id):
+                raise SolidNotApplicable(f"a load on node {n}, not on the box's reference node")
+            loads.append((dof + (3 if n == rot_id and n != ref_id else 0), value))
+        cases.append(loads)
+    return ref_id, members, cases
 
+
+def _fixed_nodes(part, X, t, nodes, clamped):
+    """Solid nodes within each rivet's footprint radius (its farthest clamped
+    shell node) of its centre, in the flange's plane, through the thickness."""
     tabs = part["tabs"]
-    X, tets = mesh_plates(tabs, t, h)
     eps = 1e-3 * t
-
-    # Rivets: the footprint radius of each is its farthest clamped shell node.
     centres = np.asarray(part["rivets"], float).reshape(-1, 3)
     C = np.array([nodes[n] for n in clamped])
     owner = np.argmin(np.linalg.norm(C[:, None, :] - centres[None], axis=2), axis=1)
@@ -230,21 +223,57 @@ def solid_compliance(part, shell_deck, work_dir, h=None):
         off = rel @ n
         inplane = np.linalg.norm(rel - np.outer(off, n), axis=1)
         fixed |= (np.abs(off) <= 0.5 * t + eps) & (inplane <= radius + eps)
+    return fixed
 
-    # The box: base-plate nodes inside the footprint, through the thickness.
-    n0 = np.asarray(tabs[0]["normal"], float)
-    R = np.array([nodes[n] for n in rigid_ids])
+
+def _rigid_nodes(part, X, t, R, fixed):
+    """Base-plate solid nodes inside the box footprint (the convex hull of the
+    link's shell nodes R, #R by 3), through the thickness, not fixed."""
+    eps = 1e-3 * t
+    n0 = np.asarray(part["tabs"][0]["normal"], float)
     o = R.mean(axis=0)
     u = np.cross(n0, [1.0, 0, 0] if abs(n0[0]) < 0.9 else [0, 1.0, 0])
     u /= np.linalg.norm(u)
     v = np.cross(n0, u)
     hull = _convex_hull(np.c_[(R - o) @ u, (R - o) @ v])
     rel = X - o
-    rigid = (np.abs(rel @ n0) <= 0.5 * t + eps) & _inside_convex(np.c_[rel @ u, rel @ v], hull, eps) & ~fixed
+    return (np.abs(rel @ n0) <= 0.5 * t + eps) & _inside_convex(np.c_[rel @ u, rel @ v], hull, eps) & ~fixed
 
+
+def solid_compliance(part, shell_deck, work_dir, h=None):
+    """Compliance (J) and |u| of the load point (m) of every static case of
+    `shell_deck` (the text of an S4 deck by `sheetgen export-ccx`) on the solid
+    model of `part` (a result.json part), with the deck's supports, box link,
+    loads and material. The cases are solved as a linearly independent few of
+    them (the FAR 25.561 six are three directions) and the others superposed:
+    the loads all act on the box's REF and ROT nodes, so each case's u there is
+    the same combination of the solved ones' (exact, linear elasticity). Writes
+    solid.inp into work_dir. Returns a dict with "cases" ([{"C", "deflection"}]
+    per static step of the deck, in order), C and deflection of the first case,
+    nodes, elements, h, fixed, rigid and solved (the cases ccx solved)."""
+    t = float(ccx_deck.section_lines(shell_deck, "SHELL SECTION")[0].split(",")[0])
+    ref_id, members, cases = _box_link(part, shell_deck, t)
+    E, nu = (float(x) for x in ccx_deck.section_lines(shell_deck, "ELASTIC")[0].split(",")[:2])
+    h = DEFAULT_SIZE * t if h is None else h
+    nodes = ccx_deck.nodes(shell_deck)
+    clamped = sorted({int(line.split(",")[0]) for line in ccx_deck.section_lines(shell_deck, "BOUNDARY")})
+
+    X, tets = mesh_plates(part["tabs"], t, h)
+    fixed = _fixed_nodes(part, X, t, nodes, clamped)
+    rigid = _rigid_nodes(part, X, t, np.array([nodes[n] for n in members]), fixed)
+
+    basis, A = ccx_deck.independent_cases([dict(c) for c in cases])
     deck = os.path.join(work_dir, "solid.inp")
-    ref = write_deck(deck, X, tets, E, nu, np.nonzero(fixed)[0], np.nonzero(rigid)[0], nodes[ref_id], cloads)
-    disp = run_ccx(deck)
-    compliance = sum(value * (disp[ref][dof - 1] if dof <= 3 else disp[ref + 1][dof - 4]) for dof, value in cloads)
-    return {"C": compliance, "deflection": float(np.linalg.norm(disp[ref])), "nodes": len(X),
-            "elements": len(tets), "h": h, "fixed": int(fixed.sum()), "rigid": int(rigid.sum())}
+    solved = [cases[j] for j in basis]
+    ref = write_deck(deck, X, tets, E, nu, np.nonzero(fixed)[0], np.nonzero(rigid)[0], nodes[ref_id],
+                     solved[0], solved[1:])
+    blocks = run_ccx_steps(deck)
+    # u of the REF node (translations) and the ROT node (rotations) per solved case.
+    U = [{1: b[ref], 4: b[ref + 1]} for b in blocks]
+    out = []
+    for k, loads in enumerate(cases):
+        u = ccx_deck.superpose(A[k], U)
+        C = sum(value * (u[1][dof - 1] if dof <= 3 else u[4][dof - 4]) for dof, value in loads)
+        out.append({"C": float(C), "deflection": float(np.linalg.norm(u[1]))})
+    return {"cases": out, "C": out[0]["C"], "deflection": out[0]["deflection"], "nodes": len(X),
+            "elements": len(tets), "h": h, "fixed": int(fixed.sum()), "rigid": int(rigid.sum()), "solved": len(basis)}

@@ -4,9 +4,15 @@ the code that made them:
 * clearance (clearance.py): every tab sampled every 1.5 mm, brute-force
   point-triangle distance to every environment triangle and load box, except
   the documented allowed contacts; every rivet flange flush on its rivet area;
-* compliance and margin of safety re-computed by CalculiX (ccx_check.py, on
-  the solid model of solid_reference.py and the S4 deck), unless
-  VerifyOptions.calculix is off;
+* every case of the load, re-computed by CalculiX with the loads, masses and
+  limits rebuilt from the problem file (ccx_check.py): each static case's
+  compliance on the solid model of solid_reference.py against its limit, its
+  margin of safety from the S4 deck's stresses and, where the problem asks for
+  them (problem.eigen_requirements), the lowest buckling factor (*BUCKLE) and
+  the first natural frequency (*FREQUENCY) against their floors; one line per
+  part sums it up (worst C/C_max, lowest MS, buckling factor and f1, CalculiX's
+  and ours); docs/testing.md "The independent check" gives the rules, the
+  tolerances and the cost. Off with VerifyOptions.calculix;
 * the DXF (dxf_check.py, ezdxf): one simple closed CUT outline of the
   flat-pattern area, and the rivet holes;
 * parts of a multi-load problem avoid each other: each part's clearance is
@@ -40,7 +46,7 @@ SUMMARY = "verify_result: %d passed, %d failed"
 
 @dataclasses.dataclass
 class VerifyOptions:
-    calculix: bool = True             # compliance and MS by CalculiX (needs ccx and gmsh); off: geometry and DXF only
+    calculix: bool = True             # every case by CalculiX (needs ccx and gmsh); off: geometry and DXF only
     allow_no_part: bool = False       # a load without a valid part is reported, not a failure
     loads: Optional[set] = None       # check only these loads; the parts before them still count as obstacles
     sheetgen: str = paths.DEFAULT_SHEETGEN  # for `sheetgen export-ccx` (CalculiX only)
