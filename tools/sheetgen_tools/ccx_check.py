@@ -288,21 +288,32 @@ def ours_of(part):
     return cases, factor, list(env.get("frequencies_hz") or [])
 
 
-def _ours_compliance(part, cases, k):
-    """Our compliance of case k, where result.json says it: the envelope's case
-    of that name, else (a result without an envelope) parts[i].compliance for the first case."""
+def _ours_case(part, case_name, k):
+    """Our numbers of case k (named case_name) where result.json says them: the
+    envelope's case of that name, else (a result without an envelope) the
+    part's own fields for the first case; {} when unknown. Keys as in result.json
+    (compliance, deflection_m, max_von_mises_pa, margin_of_safety)."""
     by_name, _, _ = ours_of(part)
     if by_name:
-        return by_name.get(cases[k]["name"], {}).get("compliance")
-    return part.get("compliance") if k == 0 and not part.get("envelope") else None
+        return by_name.get(case_name, {})
+    return part if k == 0 and not part.get("envelope") else {}
 
 
 def _percent(a, b):
     return f"{(a / b - 1) * 100:+.2f} %"
 
 
+@dataclasses.dataclass
+class _CaseVerdict:
+    name: str
+    ratio: float                      # C / C_max, the reference model's
+    ms: float                         # MS from CalculiX's stress
+    limit: float                      # J
+    ours: dict                        # _ours_case
+
+
 def _judge_case(prob, part, m, k, case, findings):
-    """Compliance and MS of one case; returns (C/C_max, MS)."""
+    """Compliance and MS of one case (_CaseVerdict)."""
     name, c = part["load"], m.cases[k]
     req = prob.get("requirements", {})
     limit = problem.compliance_limit(prob, case)
@@ -313,12 +324,12 @@ def _judge_case(prob, part, m, k, case, findings):
     line = (f"{name}: case '{case['name']}': compliance CalculiX {m.reference} {c.reference:.5g} J, "
             f"S8R {c.s8r:.5g} J, S4 {c.s4:.5g} J; limit {limit:.4g} J (C/C_max {c.reference / limit:.3f}); "
             f"deflection {c.deflection * 1e3:.4f} mm; max von Mises {c.sigma_max * 1e-6:.2f} MPa, MS {ms:.3f}")
-    ours = _ours_compliance(part, [{"name": x.name} for x in m.cases], k)
-    if ours is not None:
-        line += f"; ours C {ours:.5g} J ({_percent(ours, c.reference)})"
-        if abs(ours / c.reference - 1) > CCX_TOLERANCE:
+    ours = _ours_case(part, case["name"], k)
+    if ours.get("compliance") is not None:
+        line += f"; ours C {ours['compliance']:.5g} J ({_percent(ours['compliance'], c.reference)})"
+        if abs(ours["compliance"] / c.reference - 1) > CCX_TOLERANCE:
             findings.fail(f"{name}: case '{case['name']}': compliance differs from CalculiX ({m.reference}) "
-                          f"by {(ours / c.reference - 1) * 100:.1f} %")
+                          f"by {(ours['compliance'] / c.reference - 1) * 100:.1f} %")
     findings.note(line)
     if c.reference > (1 + CCX_TOLERANCE) * limit:
         findings.fail(f"{name}: case '{case['name']}': CalculiX ({m.reference}) compliance {c.reference:.4g} J "
@@ -328,7 +339,33 @@ def _judge_case(prob, part, m, k, case, findings):
         findings.fail(f"{name}: case '{case['name']}': CalculiX stress {c.sigma_max * 1e-6:.1f} MPa gives MS "
                       f"{ms:.3f} below the required {ms_required:.3g} by more than "
                       f"{STRESS_TOLERANCE * 100:.0f} % of the stress")
-    return c.reference / limit, ms
+    return _CaseVerdict(case["name"], c.reference / limit, ms, limit, ours)
+
+
+def _governing_lines(prob, part, m, verdicts, findings):
+    """The worst C/C_max case's compliance and the lowest MS case's stress in
+    the one-line forms of the one-case check (scripts/make_report.py reads
+    them), where result.json has our numbers for those cases."""
+    name = part["load"]
+    k = max(range(len(verdicts)), key=lambda i: verdicts[i].ratio)
+    v, c = verdicts[k], m.cases[k]
+    if v.ours.get("compliance") is not None:
+        C = v.ours["compliance"]
+        deflection = v.ours.get("deflection_m")
+        findings.note(f"{name}: compliance ours {C:.5g} J, CalculiX {m.reference} {c.reference:.5g} J "
+                      f"({_percent(C, c.reference)}), S8R {c.s8r:.5g} J ({_percent(C, c.s8r)}), S4 {c.s4:.5g} J "
+                      f"({_percent(C, c.s4)}); deflection ours "
+                      f"{'%.4f mm' % (deflection * 1e3) if deflection is not None else 'not in result.json'}, "
+                      f"CalculiX {c.deflection * 1e3:.4f} mm; limit {v.limit:.4g} J (case '{v.name}', the worst C/C_max)")
+    k = min(range(len(verdicts)), key=lambda i: verdicts[i].ms)
+    v, c = verdicts[k], m.cases[k]
+    s_ours, ms_ours = v.ours.get("max_von_mises_pa"), v.ours.get("margin_of_safety")
+    if s_ours is not None and ms_ours is not None:
+        required = prob.get("requirements", {}).get("min_margin_of_safety", 0.0)
+        findings.note(f"{name}: max von Mises ours {s_ours * 1e-6:.2f} MPa, CalculiX {c.sigma_max * 1e-6:.2f} MPa "
+                      f"({_percent(s_ours, c.sigma_max)}; {m.n_singular} singular points, {m.n_corners} re-entrant "
+                      f"corners); MS ours {ms_ours:.3f}, CalculiX {v.ms:.3f}, required {required:.3g} "
+                      f"(case '{v.name}', the lowest MS)")
 
 
 def _judge_eigen(prob, part, m, findings):
@@ -363,7 +400,7 @@ def _judge_eigen(prob, part, m, findings):
     if f1 is not None:
         floor = eigen.min_frequency_hz
         findings.note(f"{name}: natural frequencies CalculiX S4 {', '.join(f'{f:.4g}' for f in m.frequencies_hz)} Hz; "
-                      f"required f1 {'>= %.4g Hz' % floor if floor is not None else ': no floor'}")
+                      + (f"required f1 >= {floor:.4g} Hz" if floor is not None else "no floor on f1"))
         if floor is not None and f1 < (1 - FREQUENCY_TOLERANCE) * floor:
             findings.fail(f"{name}: CalculiX first frequency {f1:.4g} Hz is below the required {floor:.4g} Hz")
     return (lowest.buckling_factor if lowest else None), (lowest.name if lowest else None), f1
@@ -384,13 +421,14 @@ def judge_calculix(prob, part, m, findings):
     load = next(ld for ld in prob["loads"] if ld["name"] == name)
     cases = problem.load_cases(prob, load)
     findings.note(f"{name}: stress rule on the S4 deck: {m.n_singular} singular points, {m.n_corners} re-entrant corners")
-    ratios = [(_judge_case(prob, part, m, k, case, findings), case["name"]) for k, case in enumerate(cases[:len(m.cases)])]
+    verdicts = [_judge_case(prob, part, m, k, case, findings) for k, case in enumerate(cases[:len(m.cases)])]
+    _governing_lines(prob, part, m, verdicts, findings)
     factor, factor_case, f1 = _judge_eigen(prob, part, m, findings)
-    (worst, _), worst_case = max(ratios, key=lambda r: r[0][0])
-    (_, lowest_ms), ms_case = min(ratios, key=lambda r: r[0][1])
+    worst = max(verdicts, key=lambda v: v.ratio)
+    weakest = min(verdicts, key=lambda v: v.ms)
     _, ours_factor, ours_f = ours_of(part)
-    summary = (f"{name}: envelope by CalculiX: worst C/C_max {worst:.3f} ('{worst_case}'), "
-               f"lowest MS {lowest_ms:.3f} ('{ms_case}')")
+    summary = (f"{name}: envelope by CalculiX: worst C/C_max {worst.ratio:.3f} ('{worst.name}'), "
+               f"lowest MS {weakest.ms:.3f} ('{weakest.name}')")
     if factor is not None:
         summary += f", buckling factor {factor:.4g} ('{factor_case}')"
         summary += f" / ours {ours_factor:.4g}" if ours_factor is not None else " / ours not in result.json"
