@@ -24,7 +24,7 @@ namespace fs = std::filesystem;
 
 const fs::path kFuzzDir = fs::path(SHEETGEN_SOURCE_DIR) / "tests" / "fuzz";
 
-std::string slurp(const fs::path& p) {
+std::string slurp_existing(const fs::path& p) {
   std::ifstream in(p, std::ios::binary);
   EXPECT_TRUE(in) << p;
   std::ostringstream ss;
@@ -55,7 +55,7 @@ std::string mesh_dir() { return (kFuzzDir / "mesh_dir").string(); }
 // parse_error, for a number literal beyond double; it escaped as an internal
 // error (CLI exit 3). Now a JSON error like any other.
 TEST(FuzzRegression, NumberOverflowIsInvalidJson) {
-  const std::string text = slurp(kFuzzDir / "regressions/fuzz_problem_json/number_overflow_1e999.json");
+  const std::string text = slurp_existing(kFuzzDir / "regressions/fuzz_problem_json/number_overflow_1e999.json");
   const InputError e = expect_input_error([&] { parse_problem(text, "p.json", mesh_dir()); });
   EXPECT_EQ(e.field(), "");
   EXPECT_EQ(std::string(e.what()), "p.json: is not valid JSON (number overflow parsing '1e999').");
@@ -67,7 +67,7 @@ TEST(FuzzRegression, NumberOverflowIsInvalidJson) {
 // fuzz_mesh_readers, first minute: a binary PLY whose face list (uint) held
 // 2587880000 was cast to int (UBSan: outside the range of representable values).
 TEST(FuzzRegression, PlyFaceIndexBeyondIntIsRefused) {
-  const std::string bytes = slurp(kFuzzDir / "regressions/fuzz_mesh_readers/ply_index_outside_int.ply");
+  const std::string bytes = slurp_existing(kFuzzDir / "regressions/fuzz_mesh_readers/ply_index_outside_int.ply");
   const InputError e = expect_input_error([&] { parse_ply(bytes, "m.ply"); });
   EXPECT_EQ(e.field().rfind("face ", 0), 0u) << e.what();
   EXPECT_NE(e.problem().find("is not a valid index"), std::string::npos) << e.what();
@@ -98,7 +98,7 @@ TEST(FuzzRegression, PlyNonIntegerIndicesAreRefused) {
 // timeout after 6 s): an element with no properties and a count of 2^62 passed the
 // size guard (it takes no bytes) and the reader looped over every entry.
 TEST(FuzzRegression, PlyElementWithoutPropertiesDoesNotHang) {
-  const std::string bytes = slurp(kFuzzDir / "regressions/fuzz_mesh_readers/ply_element_without_properties_huge_count.ply");
+  const std::string bytes = slurp_existing(kFuzzDir / "regressions/fuzz_mesh_readers/ply_element_without_properties_huge_count.ply");
   const auto start = std::chrono::steady_clock::now();
   const TriangleMesh m = parse_ply(bytes, "m.ply");
   EXPECT_EQ(m.vertices.size(), 3u);
@@ -112,7 +112,7 @@ TEST(FuzzRegression, PlyElementWithoutPropertiesDoesNotHang) {
 // with "end_header" and no newline put the data offset one past the end, and
 // bytes.substr() threw std::out_of_range (CLI: internal error).
 TEST(FuzzRegression, PlyHeaderEndingWithoutNewline) {
-  const std::string bytes = slurp(kFuzzDir / "regressions/fuzz_mesh_readers/ply_ascii_end_header_without_newline.ply");
+  const std::string bytes = slurp_existing(kFuzzDir / "regressions/fuzz_mesh_readers/ply_ascii_end_header_without_newline.ply");
   expect_input_error([&] { validate_mesh(parse_ply(bytes, "m.ply"), "m.ply", "mesh"); });
   const std::string header = "ply\nformat ascii 1.0\nelement vertex 1\nproperty float x\nproperty float y\nproperty float z\nend_header";
   EXPECT_EQ(std::string(expect_input_error([&] { parse_ply(header, "m.ply"); }).what()),
@@ -124,7 +124,7 @@ TEST(FuzzRegression, PlyHeaderEndingWithoutNewline) {
 // Found by the fuzzer's one-line check (run by hand on a crafted key): a JSON key
 // or name with "\n" put a raw newline into the message the CLI prints as one line.
 TEST(FuzzRegression, ControlCharactersInMessagesAreEscaped) {
-  const std::string text = slurp(kFuzzDir / "regressions/fuzz_problem_json/newline_in_key.json");
+  const std::string text = slurp_existing(kFuzzDir / "regressions/fuzz_problem_json/newline_in_key.json");
   const InputError e = expect_input_error([&] { parse_problem(text, "p.json", mesh_dir()); });
   EXPECT_EQ(e.field(), "(top level)");
   EXPECT_EQ(std::string(e.what()).substr(0, 45), "p.json: (top level): unknown field 'a\\nb' (ex");
@@ -221,7 +221,7 @@ TEST(FuzzRegression, EverySavedInputKeepsTheContract) {
     if (!fs::exists(dir)) continue;
     for (const auto& entry : fs::directory_iterator(dir)) {
       SCOPED_TRACE(entry.path().string());
-      const std::string bytes = slurp(entry.path());
+      const std::string bytes = slurp_existing(entry.path());
       ++replayed;
       auto check = [&](auto&& f, const char* file) {
         try {

@@ -23,6 +23,7 @@
 #include <string>
 #include <vector>
 #include "../common/cli_path.hpp"
+#include "../common/test_files.hpp"
 
 extern char** environ;
 
@@ -53,12 +54,7 @@ struct ScratchDir {
   }
 };
 
-inline std::string slurp(const fs::path& p) {
-  std::ifstream in(p, std::ios::binary);
-  std::ostringstream ss;
-  ss << in.rdbuf();
-  return ss.str();
-}
+using testing::slurp;
 
 struct CliRun {
   int exit_code = -1;
@@ -104,7 +100,7 @@ inline CliRun run_sheetgen(const std::vector<std::string>& args, const fs::path&
 
 using nlohmann::json;
 
-const char* kWallObj =
+const char* kWallObjWithComment =
     "# wall 0.6 m, metres\nv 0 -0.3 0\nv 0 0.3 0\nv 0 0.3 0.6\nv 0 -0.3 0.6\nf 1 2 3\nf 1 3 4\n";
 
 // The corner of problem_test.cpp, every mesh inline: a 0.6 m wall and floor, one box.
@@ -120,7 +116,7 @@ json corner(double scale = 1.0) {
 }
 
 template <class F>
-InputError expect_input_error(F&& f) {
+InputError expect_one_line_error(F&& f) {
   try {
     f();
   } catch (const InputError& e) {
@@ -156,7 +152,7 @@ TEST(HostileInput, DegenerateAndDuplicateTrianglesLoadAsGiven) {
   EXPECT_EQ(p.meshes[1].mesh.face_normal(3), Vec3::Zero());    // documented: zero normal when degenerate
 
   j["rivet_areas"].push_back({{"name", "only_degenerate"}, {"mesh", "floor"}, {"faces", {3, 4}}});
-  EXPECT_EQ(std::string(expect_input_error([&] { parse_problem(j.dump(), "p.json", "."); }).what()),
+  EXPECT_EQ(std::string(expect_one_line_error([&] { parse_problem(j.dump(), "p.json", "."); }).what()),
             "p.json: rivet_areas[3].faces: rivet area 'only_degenerate' has zero area (degenerate faces).");
 }
 
@@ -201,7 +197,7 @@ TEST(HostileInput, KilometreScaleSceneLoads) {
 TEST(HostileInput, MicrometreScaleSceneIsRefusedForItsRivetAreas) {
   ScratchDir scratch;
   const double s = 200e-6 / 0.6;
-  const std::string msg = expect_input_error([&] { parse_problem(corner(s).dump(), "p.json", "."); }).what();
+  const std::string msg = expect_one_line_error([&] { parse_problem(corner(s).dump(), "p.json", "."); }).what();
   EXPECT_NE(msg.find("smaller than the smallest rivet flange (12.8 x 16.0 mm"), std::string::npos) << msg;
   const CliRun r = run_sheetgen({"check", "--env", scratch.write("um.json", corner(s).dump()).string()}, scratch.dir);
   EXPECT_EQ(r.exit_code, 1) << r.err;
@@ -215,7 +211,7 @@ TEST(HostileInput, MillimetreSceneIsRefusedAsAUnitSlip) {
   const std::string expected =
       "p.json: loads[0].size: load box is 160 m across in a scene 1039 m across: the file looks like it is in "
       "millimetres (problem files are in metres; scale the scene by 0.001).";
-  EXPECT_EQ(std::string(expect_input_error([&] { parse_problem(j.dump(), "p.json", "."); }).what()), expected);
+  EXPECT_EQ(std::string(expect_one_line_error([&] { parse_problem(j.dump(), "p.json", "."); }).what()), expected);
   const fs::path path = scratch.write("mm.json", j.dump());
   const CliRun r = run_sheetgen({"check", path.string()}, scratch.dir);
   EXPECT_EQ(r.exit_code, 1);
@@ -233,7 +229,7 @@ TEST(HostileInput, NanInAForceIsNamed) {
   const std::string force = "\"force\":[0,0,-353.16]";
   ASSERT_NE(text.find(force), std::string::npos);
   text.replace(text.find(force), force.size(), "\"force\": [0, NaN, -353.16]");
-  EXPECT_EQ(std::string(expect_input_error([&] { parse_problem(text, "p.json", "."); }).what()),
+  EXPECT_EQ(std::string(expect_one_line_error([&] { parse_problem(text, "p.json", "."); }).what()),
             "p.json: loads[0].force[1]: expected a finite number, got NaN.");
 }
 
@@ -243,7 +239,7 @@ TEST(HostileInput, TruncatedProblemFileIsInvalidJson) {
   const std::string text = corner().dump(1);
   // Cut where a download or a full disk would: here just before "loads".
   const fs::path path = scratch.write("cut.json", text.substr(0, text.find("\"loads\"")));
-  const InputError e = expect_input_error([&] { load_problem(path.string()); });
+  const InputError e = expect_one_line_error([&] { load_problem(path.string()); });
   EXPECT_EQ(e.field(), "");
   EXPECT_EQ(e.problem().rfind("is not valid JSON (parse error at line ", 0), 0u) << e.what();
   EXPECT_NE(e.problem().find("unexpected end of input"), std::string::npos) << e.what();
@@ -261,7 +257,7 @@ TEST(HostileInput, OneGigabyteProblemFileIsRefusedUnread) {
   const fs::path path = scratch.dir / "huge.json";
   std::ofstream(path).put('{');
   fs::resize_file(path, 1ull << 30);
-  EXPECT_EQ(std::string(expect_input_error([&] { load_problem(path.string()); }).what()),
+  EXPECT_EQ(std::string(expect_one_line_error([&] { load_problem(path.string()); }).what()),
             path.string() + ": is 1024 MiB; problem files are limited to 256 MiB (put large meshes in OBJ/PLY files).");
   const CliRun r = run_sheetgen({"check", path.string()}, scratch.dir);
   EXPECT_EQ(r.exit_code, 1);
@@ -278,7 +274,7 @@ TEST(HostileInput, HugeMeshFileIsRefusedUnread) {
   json j = corner();
   j["environment"]["meshes"][0] = {{"name", "wall"}, {"file", "huge.obj"}};
   const fs::path path = scratch.write("p.json", j.dump());
-  EXPECT_EQ(std::string(expect_input_error([&] { load_problem(path.string()); }).what()),
+  EXPECT_EQ(std::string(expect_one_line_error([&] { load_problem(path.string()); }).what()),
             path.string() + ": environment.meshes[0].file: cannot read mesh file '" + mesh.string() +
                 "': is 3072 MiB; mesh files are limited to 2048 MiB.");
   const CliRun r = run_sheetgen({"check", path.string()}, scratch.dir);
@@ -311,7 +307,7 @@ TEST(HostileInput, LargeOneLineObjIsScannedInPlace) {
 TEST(HostileInput, PathsWithSpacesAndNonAsciiNames) {
   ScratchDir scratch;
   const fs::path dir = scratch.dir / "dir with spaces" / u8"ñandú";
-  scratch.write(dir / u8"pared ñ.obj", kWallObj);
+  scratch.write(dir / u8"pared ñ.obj", kWallObjWithComment);
   scratch.write(dir / u8"suelo ü.ply",
                 "ply\nformat ascii 1.0\nelement vertex 4\nproperty float x\nproperty float y\nproperty float z\n"
                 "element face 1\nproperty list uchar int vertex_indices\nend_header\n0 -0.3 0\n0.6 -0.3 0\n0.6 0.3 0\n0 0.3 0\n4 0 1 2 3\n");
@@ -358,7 +354,7 @@ TEST(HostileInput, TenThousandLoads) {
   EXPECT_NE(r.out.find("loads: 10000"), std::string::npos);
 
   j["loads"][9999]["name"] = "box17";
-  EXPECT_EQ(std::string(expect_input_error([&] { parse_problem(j.dump(), "p.json", "."); }).what()),
+  EXPECT_EQ(std::string(expect_one_line_error([&] { parse_problem(j.dump(), "p.json", "."); }).what()),
             "p.json: loads[9999].name: duplicate load name 'box17'.");
 }
 

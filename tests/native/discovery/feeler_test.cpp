@@ -12,7 +12,7 @@
 namespace sheetgen {
 namespace {
 
-const double kDeg = M_PI / 180.0;
+using fixtures::kDeg;
 
 // Right-angle limits as `--right-angles` sets them (generate.cpp).
 SheetSpec right_angle_sheet(bool flat_extensions) {

@@ -7,12 +7,13 @@
 #include "sheetgen/discovery/segment_optimiser.hpp"
 #include "sheetgen/env/environment.hpp"
 #include "sheetgen/part/validity.hpp"
+#include "../common/sheet_fixture.hpp"
 
 namespace sheetgen {
 namespace {
 
 using namespace testing_scenes;
-const double kDeg = M_PI / 180.0;
+using fixtures::kDeg;
 
 // A rivet wall in the plane x = -0.2 m facing +x (towards the base at x 0..0.04).
 Problem wall_problem() {

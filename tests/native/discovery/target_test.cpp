@@ -6,12 +6,13 @@
 #include "scene_fixture.hpp"
 #include "sheetgen/discovery/target.hpp"
 #include "sheetgen/env/environment.hpp"
+#include "../common/sheet_fixture.hpp"
 
 namespace sheetgen {
 namespace {
 
 using namespace testing_scenes;
-const double kDeg = M_PI / 180.0;
+using fixtures::kDeg;
 
 // Two horizontal rivet areas far below the base (z = 0): RA0 at z = -0.3 m,
 // RA1 at z = -0.5 m, both 0.45 x 0.45 m, so the nearest point of anything above

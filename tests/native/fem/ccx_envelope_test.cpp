@@ -19,21 +19,13 @@
 #include "fem_test_models.hpp"
 #include "sheetgen/fem/ccx_export.hpp"
 #include "sheetgen/fem/fem_error.hpp"
+#include "../common/test_files.hpp"
 
 namespace sheetgen {
 namespace {
 
-std::string ccx_path() {
-  for (const char* p : {"/usr/bin/ccx", "/usr/local/bin/ccx"})
-    if (std::filesystem::exists(p)) return p;
-  return "";
-}
-
-std::string temp_dir(const std::string& name) {
-  std::string pattern = (std::filesystem::temp_directory_path() / ("sheetgen_" + name + "_XXXXXX")).string();
-  if (!mkdtemp(pattern.data())) return "";
-  return pattern;
-}
+using testing::ccx_path;
+using testing::temp_dir;
 
 // A flat strip along x, clamped at x = 0, of elastic length L, width b and
 // thickness t, and a rigid end plate: one more cell row beyond x = L all in

@@ -16,21 +16,13 @@
 
 #include "fem_brackets.hpp"
 #include "sheetgen/fem/fem_error.hpp"
+#include "../common/test_files.hpp"
 
 namespace sheetgen {
 namespace {
 
-std::string ccx_path() {
-  for (const char* p : {"/usr/bin/ccx", "/usr/local/bin/ccx"})
-    if (std::filesystem::exists(p)) return p;
-  return "";
-}
-
-std::string temp_dir(const std::string& name) {
-  std::string pattern = (std::filesystem::temp_directory_path() / ("sheetgen_" + name + "_XXXXXX")).string();
-  if (!mkdtemp(pattern.data())) return "";
-  return pattern;
-}
+using testing::ccx_path;
+using testing::temp_dir;
 
 // ref_compliance > 0 also checks ccx itself against a published value.
 void compare_with_ccx(const ShellModel& m, const std::string& name, double ref_compliance = 0) {

@@ -10,9 +10,9 @@
 namespace sheetgen {
 namespace {
 
-const double kDeg = M_PI / 180.0;
+using fixtures::kDeg;
 
-SheetSpec spec() { return fixtures::aluminium_sheet_1_6mm(); }
+using fixtures::spec;
 
 // Cross-section in the y-z plane (all tabs 30 mm wide in x):
 //   base y 0..40 at z 0; W (tab 4) stands on y = 40 up to z = 30;

@@ -12,7 +12,7 @@
 namespace sheetgen {
 namespace {
 
-const double kDeg = M_PI / 180.0;
+using fixtures::kDeg;
 constexpr double kT = 1.6e-3;
 
 Manufacturing manufacturing() { return fixtures::aluminium_manufacturing_1_6mm(); }

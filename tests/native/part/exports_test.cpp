@@ -18,9 +18,9 @@
 namespace sheetgen {
 namespace {
 
-const double kDeg = M_PI / 180.0;
+using fixtures::kDeg;
 
-SheetSpec spec() { return fixtures::aluminium_sheet_1_6mm(); }
+using fixtures::spec;
 
 Part sample() { return fixtures::four_bend_sample(); }
 

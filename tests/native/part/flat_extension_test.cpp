@@ -16,7 +16,7 @@
 namespace sheetgen {
 namespace {
 
-const double kDeg = M_PI / 180.0;
+using fixtures::kDeg;
 
 SheetSpec spec(bool flat_extensions) {
   SheetSpec s = fixtures::aluminium_sheet_1_6mm();
@@ -24,9 +24,7 @@ SheetSpec spec(bool flat_extensions) {
   return s;
 }
 
-Part square_base() {
-  return make_base_part({Vec3(0, 0, 0), Vec3(0.04, 0, 0), Vec3(0.04, 0.04, 0), Vec3(0, 0.04, 0)}, Vec3::UnitZ());
-}
+using fixtures::square_base;
 
 // 40 x 40 mm base; on its -y edge a full-width 40 x 20 mm flat extension; on
 // the extension's far edge a 20 x 30 mm tab bent 90 deg at d = 10 mm.

@@ -12,13 +12,11 @@
 namespace sheetgen {
 namespace {
 
-const double kDeg = M_PI / 180.0;
+using fixtures::kDeg;
 
-SheetSpec spec() { return fixtures::aluminium_sheet_1_6mm(); }
+using fixtures::spec;
 
-Part square_base(double size = 0.04) {
-  return make_base_part({Vec3(0, 0, 0), Vec3(size, 0, 0), Vec3(size, size, 0), Vec3(0, size, 0)}, Vec3::UnitZ());
-}
+using fixtures::square_base;
 
 Part l_bracket() {
   Part p = square_base();

@@ -12,9 +12,9 @@
 namespace sheetgen {
 namespace {
 
-const double kDeg = M_PI / 180.0;
+using fixtures::kDeg;
 
-SheetSpec spec() { return fixtures::aluminium_sheet_1_6mm(); }
+using fixtures::spec;
 
 Part square(double size) {
   return make_base_part({Vec3(0, 0, 0), Vec3(size, 0, 0), Vec3(size, size, 0), Vec3(0, size, 0)}, Vec3::UnitZ());

@@ -8,19 +8,18 @@
 #include "sheetgen/core/geometry.hpp"
 #include "sheetgen/part/part.hpp"
 #include "sheetgen/part/realisation.hpp"
+#include "../common/sheet_fixture.hpp"
 
 namespace sheetgen {
 namespace {
 
 constexpr double kTol = 1e-12;  // m; the formulas are a few flops deep
-const double kDeg = M_PI / 180.0;
+using fixtures::kDeg;
 
 // Base: 40 mm x 40 mm square in z = 0, top normal +z, corners
 // (0,0) (40,0) (40,40) (0,40) mm. Edge 0 runs +x along y = 0 (outward -y),
 // edge 1 runs +y along x = 40 (outward +x).
-Part square_base() {
-  return make_base_part({Vec3(0, 0, 0), Vec3(0.04, 0, 0), Vec3(0.04, 0.04, 0), Vec3(0, 0.04, 0)}, Vec3::UnitZ());
-}
+using fixtures::square_base;
 
 void expect_near(const Vec3& got, const Vec3& want, const char* what) {
   EXPECT_LT((got - want).norm(), kTol) << what << ": got " << got.transpose() << " want " << want.transpose();

@@ -16,7 +16,7 @@
 namespace sheetgen {
 namespace {
 
-SheetSpec spec() { return fixtures::aluminium_sheet_1_6mm(); }
+using fixtures::spec;
 
 // The world point that flat point q of piece `tab` folds to: the affine map
 // taking the piece's flat mid-surface corners onto their folded corners.

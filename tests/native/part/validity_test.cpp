@@ -10,13 +10,11 @@
 namespace sheetgen {
 namespace {
 
-const double kDeg = M_PI / 180.0;
+using fixtures::kDeg;
 
-SheetSpec spec() { return fixtures::aluminium_sheet_1_6mm(); }
+using fixtures::spec;
 
-Part square_base() {
-  return make_base_part({Vec3(0, 0, 0), Vec3(0.04, 0, 0), Vec3(0.04, 0.04, 0), Vec3(0, 0.04, 0)}, Vec3::UnitZ());
-}
+using fixtures::square_base;
 
 ValidityReason reason_for(const TabParameters& p, int rivet_area = -1) {
   Part part = square_base();

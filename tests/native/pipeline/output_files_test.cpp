@@ -10,18 +10,14 @@
 
 #include "hand_made_result.hpp"
 #include "sheetgen/pipeline/output_files.hpp"
+#include "../common/test_files.hpp"
 
 namespace sheetgen {
 namespace {
 
 namespace fs = std::filesystem;
 
-std::string slurp(const fs::path& p) {
-  std::ifstream in(p, std::ios::binary);
-  std::stringstream ss;
-  ss << in.rdbuf();
-  return ss.str();
-}
+using testing::slurp;
 
 struct OutputFiles : ::testing::Test {
   fs::path dir = fs::temp_directory_path() / ("sheetgen output files " + std::to_string(::getpid()));

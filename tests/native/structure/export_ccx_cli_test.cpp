@@ -15,6 +15,7 @@
 #include "sheetgen/part/exports.hpp"
 #include "sheetgen/structure/part_model.hpp"
 #include "../common/cli_path.hpp"
+#include "../common/test_files.hpp"
 
 namespace sheetgen {
 namespace {
@@ -31,12 +32,7 @@ std::pair<int, std::string> run(const std::string& args) {
   return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, out};
 }
 
-std::string slurp(const fs::path& p) {
-  std::ifstream in(p, std::ios::binary);
-  std::stringstream ss;
-  ss << in.rdbuf();
-  return ss.str();
-}
+using testing::slurp;
 
 // A 10 cm box 15 cm above a floor that is one rivet area, written to
 // dir/problem.json with `force` (N, JSON array), and a part: the base under the
