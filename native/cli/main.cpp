@@ -64,8 +64,14 @@ void print_envelope_and_requirements(const sheetgen::Problem& p) {
   const auto& r = p.requirements;
   char freq[48] = "none";
   if (r.min_frequency_hz) std::snprintf(freq, sizeof freq, "%.4g Hz", *r.min_frequency_hz);
-  std::printf("requirements: safety factor %.4g, min MS %.4g, min buckling factor %.4g, min frequency %s\n", r.safety_factor,
-              r.min_margin_of_safety, r.min_buckling_factor, freq);
+  // An old one-force file is not checked for buckling or frequency
+  // (Requirements::eigen_checks); printing a floor for it would mislead.
+  if (r.eigen_checks)
+    std::printf("requirements: safety factor %.4g, min MS %.4g, min buckling factor %.4g, min frequency %s\n", r.safety_factor,
+                r.min_margin_of_safety, r.min_buckling_factor, freq);
+  else
+    std::printf("requirements: safety factor %.4g, min MS %.4g; buckling and frequency not checked (one force per load, "
+                "no floor named)\n", r.safety_factor, r.min_margin_of_safety);
 }
 
 void print_summary(const sheetgen::Problem& p) {

@@ -274,6 +274,15 @@ TEST(LoadCases, CheckPrintsTheCases) {
   EXPECT_NE(out.find("min buckling factor 1.5, min frequency none"), std::string::npos) << out;
 }
 
+// An old one-force file names no floor: `check` says buckling and frequency
+// are not checked rather than print a floor the search does not apply.
+TEST(LoadCases, CheckSaysAnOldFileHasNoEigenChecks) {
+  const auto [code, out] = run_check((fs::path(SHEETGEN_SOURCE_DIR) / "sample_scenes/corner/problem.json").string(), false);
+  EXPECT_EQ(code, 0) << out;
+  EXPECT_NE(out.find("buckling and frequency not checked"), std::string::npos) << out;
+  EXPECT_EQ(out.find("min buckling factor"), std::string::npos) << out;
+}
+
 struct BadInput {
   const char* label;
   std::function<void(json&)> edit;  // applied to enveloped_problem()
