@@ -16,7 +16,6 @@
 
 Run: PYTHONPATH=tools /usr/bin/python3 tests/python/test_ccx_deck.py --sheetgen build/native/cli/sheetgen
 """
-import argparse
 import json
 import os
 import subprocess
@@ -27,6 +26,7 @@ import unittest
 import numpy as np
 
 from sheetgen_tools import ccx_check, ccx_deck, paths, problem, runner, solid_reference
+import cli_tests  # noqa: E402  (tests/python/, the script's own folder)
 
 SHEETGEN = None
 G = problem.STANDARD_GRAVITY
@@ -339,9 +339,5 @@ class ExportedDeck(unittest.TestCase):
 
 
 if __name__ == "__main__":
-    ap = argparse.ArgumentParser()
-    ap.add_argument("--sheetgen", required=True)
-    args, rest = ap.parse_known_args()
-    SHEETGEN = os.path.abspath(args.sheetgen)
-    result = unittest.main(argv=[sys.argv[0]] + rest, exit=False, verbosity=2).result
+    result = cli_tests.run_with_sheetgen(sys.modules[__name__])
     sys.exit(0 if result.wasSuccessful() else 1)

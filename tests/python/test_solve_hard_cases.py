@@ -5,7 +5,6 @@ second leaving nothing that looks finished.
 
 Run: PYTHONPATH=tools /usr/bin/python3 tests/python/test_solve_hard_cases.py --sheetgen build/native/cli/sheetgen
 """
-import argparse
 import json
 import os
 import signal
@@ -16,6 +15,7 @@ import time
 import unittest
 
 from sheetgen_tools import runner
+import cli_tests  # noqa: E402  (tests/python/, the script's own folder)
 
 SHEETGEN = None
 QUICK = {"chains": 4, "iterations": 150, "threads": 2}
@@ -185,11 +185,7 @@ class HardCases(unittest.TestCase):
 
 
 if __name__ == "__main__":
-    ap = argparse.ArgumentParser()
-    ap.add_argument("--sheetgen", required=True)
-    args, rest = ap.parse_known_args()
-    SHEETGEN = os.path.abspath(args.sheetgen)
-    result = unittest.main(argv=[sys.argv[0]] + rest, exit=False, verbosity=2).result
+    result = cli_tests.run_with_sheetgen(sys.modules[__name__])
     print("hard cases: %d passed, %d failed" % (result.testsRun - len(result.failures) - len(result.errors) - len(result.skipped),
                                                len(result.failures) + len(result.errors)))
     sys.exit(0 if result.wasSuccessful() else 1)

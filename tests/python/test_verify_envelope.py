@@ -19,7 +19,6 @@ CalculiX and gmsh (full tier).
 
 Run: PYTHONPATH=tools /usr/bin/python3 tests/python/test_verify_envelope.py --sheetgen build/native/cli/sheetgen
 """
-import argparse
 import copy
 import json
 import math
@@ -37,6 +36,7 @@ from sheetgen_tools.findings import Findings
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 from test_ccx_deck import corner_envelope_problem  # noqa: E402
+import cli_tests  # noqa: E402  (tests/python/, the script's own folder)
 
 SHEETGEN = None
 L, B, T, E, RHO = 0.1, 0.01, 1e-3, 70e9, 2700.0
@@ -180,9 +180,5 @@ class CornerUnderFar25561(unittest.TestCase):
 
 
 if __name__ == "__main__":
-    ap = argparse.ArgumentParser()
-    ap.add_argument("--sheetgen", required=True)
-    args, rest = ap.parse_known_args()
-    SHEETGEN = os.path.abspath(args.sheetgen)
-    result = unittest.main(argv=[sys.argv[0]] + rest, exit=False, verbosity=2).result
+    result = cli_tests.run_with_sheetgen(sys.modules[__name__])
     sys.exit(0 if result.wasSuccessful() else 1)
