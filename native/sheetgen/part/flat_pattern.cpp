@@ -371,38 +371,40 @@ ValidityReport check_flat_pattern(const FlatPattern& flat, const SheetSpec& spec
   return report;
 }
 
-std::vector<std::vector<Vec3>> fold_flat_pattern(const FlatPattern& flat) {
+std::vector<FlatPieceTransform> fold_transforms(const FlatPattern& flat) {
   const int n = static_cast<int>(flat.pieces.size());
-  std::vector<Eigen::Matrix3d> R(n);
-  std::vector<Vec3> T(n);
-  std::vector<std::vector<Vec3>> out(n);
-  if (n == 0) return out;
-  R[0].col(0) = flat.frame.x_axis;
-  R[0].col(1) = flat.frame.y_axis;
-  R[0].col(2) = flat.frame.normal();
-  T[0] = flat.frame.origin;
-  auto apply = [&](int i, const Vec2& q) { return Vec3(R[i] * Vec3(q.x(), q.y(), 0) + T[i]); };
+  std::vector<FlatPieceTransform> m(n);
+  if (n == 0) return m;
+  m[0].rotation.col(0) = flat.frame.x_axis;
+  m[0].rotation.col(1) = flat.frame.y_axis;
+  m[0].rotation.col(2) = flat.frame.normal();
+  m[0].translation = flat.frame.origin;
   std::vector<const FlatBend*> bend_of(n, nullptr);
   for (const FlatBend& b : flat.bends) bend_of[b.tab] = &b;
   for (int i = 1; i < n; ++i) {  // parents come first
-    const int p = flat.pieces[i].parent;
+    const FlatPieceTransform& P = m[flat.pieces[i].parent];
     const FlatBend* b = bend_of[i];
     if (!b) {  // a flat extension lies in its parent's plane
-      R[i] = R[p];
-      T[i] = T[p];
+      m[i] = P;
       continue;
     }
     const Vec2 E = (b->b - b->a).normalized();
-    const Vec3 e3 = R[p] * Vec3(E.x(), E.y(), 0);
-    const Vec3 X0 = apply(p, b->a - b->centre_offset * b->outward);  // on the sharp fold line
+    const Vec3 e3 = P.rotation * Vec3(E.x(), E.y(), 0);
+    const Vec3 X0 = P.apply(b->a - b->centre_offset * b->outward);  // on the sharp fold line
     const Eigen::Matrix3d rot = Eigen::AngleAxisd(b->angle, -e3).toRotationMatrix();
     const Vec2 unshift = -b->length_change * b->outward;
     // q -> rot * (R_p (q + unshift) + T_p - X0) + X0
-    R[i] = rot * R[p];
-    T[i] = rot * (R[p] * Vec3(unshift.x(), unshift.y(), 0) + T[p] - X0) + X0;
+    m[i].rotation = rot * P.rotation;
+    m[i].translation = rot * (P.rotation * Vec3(unshift.x(), unshift.y(), 0) + P.translation - X0) + X0;
   }
-  for (int i = 0; i < n; ++i)
-    for (const Vec2& q : flat.pieces[i].sharp) out[i].push_back(apply(i, q));
+  return m;
+}
+
+std::vector<std::vector<Vec3>> fold_flat_pattern(const FlatPattern& flat) {
+  const std::vector<FlatPieceTransform> m = fold_transforms(flat);
+  std::vector<std::vector<Vec3>> out(m.size());
+  for (size_t i = 0; i < m.size(); ++i)
+    for (const Vec2& q : flat.pieces[i].sharp) out[i].push_back(m[i].apply(q));
   return out;
 }
 

@@ -80,6 +80,20 @@ ValidityReport check_flat_pattern(const FlatPattern& flat, const SheetSpec& spec
 // the search asks of every changed part.
 bool unfolds_cleanly(const Part& part, const SheetSpec& spec);
 
+// Where a piece of the flat pattern lies on the bent part: the rigid motion
+// (rotation, then translation; m) that folds the flat plane, seen from the top
+// side (z up), onto the tab's plane with z along its top normal. Bend zones
+// are not rigid; for them see docs/cad.md.
+struct FlatPieceTransform {
+  Eigen::Matrix3d rotation = Eigen::Matrix3d::Identity();
+  Vec3 translation = Vec3::Zero();  // m
+  Vec3 apply(const Vec2& q, double z = 0) const { return rotation * Vec3(q.x(), q.y(), z) + translation; }
+};
+
+// Per piece (same indices as pieces), from the flat pattern's own data only:
+// undo dL, rotate about the sharp line by theta3 about -e, compose down the tree.
+std::vector<FlatPieceTransform> fold_transforms(const FlatPattern& flat);
+
 // Folds the flat pattern back using only its own data (pieces' sharp polygons,
 // bend lines, angles, dL): per tab, world corners of the mid-surface polygon in
 // the order of RealisedTab::corners. A consistency check of the plan.

@@ -1,0 +1,442 @@
+// The only OpenCASCADE code of sheetgen (docs/code-style.md point 5). How the
+// solids are built and why: docs/cad.md.
+#include "sheetgen/cad/step_export.hpp"
+
+#include <BRepAdaptor_Curve.hxx>
+#include <BRepAdaptor_Surface.hxx>
+#include <BRepAlgoAPI_Cut.hxx>
+#include <BRepBndLib.hxx>
+#include <BRepBuilderAPI_MakeEdge.hxx>
+#include <BRepBuilderAPI_MakeFace.hxx>
+#include <BRepBuilderAPI_MakePolygon.hxx>
+#include <BRepBuilderAPI_MakeVertex.hxx>
+#include <BRepBuilderAPI_MakeWire.hxx>
+#include <BRepBuilderAPI_Sewing.hxx>
+#include <BRepBuilderAPI_Transform.hxx>
+#include <BRepCheck_Analyzer.hxx>
+#include <BRepGProp.hxx>
+#include <BRepLib.hxx>
+#include <BRepMesh_IncrementalMesh.hxx>
+#include <BRepOffsetAPI_MakeOffsetShape.hxx>
+#include <BRepOffsetAPI_MakeThickSolid.hxx>
+#include <BRepPrimAPI_MakeCylinder.hxx>
+#include <BRepPrimAPI_MakePrism.hxx>
+#include <BRepTools.hxx>
+#include <BRepTools_WireExplorer.hxx>
+#include <BRep_Builder.hxx>
+#include <BRep_Tool.hxx>
+#include <Bnd_Box.hxx>
+#include <GCE2d_MakeSegment.hxx>
+#include <GProp_GProps.hxx>
+#include <Geom_CylindricalSurface.hxx>
+#include <IFSelect_ReturnStatus.hxx>
+#include <Interface_Static.hxx>
+#include <Message.hxx>
+#include <Message_Messenger.hxx>
+#include <Poly_Triangulation.hxx>
+#include <STEPControl_Writer.hxx>
+#include <ShapeFix_Face.hxx>
+#include <ShapeUpgrade_UnifySameDomain.hxx>
+#include <Standard_Failure.hxx>
+#include <TopExp_Explorer.hxx>
+#include <TopoDS.hxx>
+#include <TopoDS_Face.hxx>
+#include <TopoDS_Shell.hxx>
+#include <TopoDS_Solid.hxx>
+#include <TopoDS_Wire.hxx>
+#include <TopTools_ListOfShape.hxx>
+#include <gp_Ax3.hxx>
+#include <gp_Circ.hxx>
+#include <gp_Pln.hxx>
+#include <gp_Trsf.hxx>
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <functional>
+#include <limits>
+#include <mutex>
+#include <stdexcept>
+#include <unistd.h>
+
+#include "sheetgen/core/polygon_geometry.hpp"
+
+namespace sheetgen {
+
+namespace {
+
+constexpr double kMm = 1e3;  // the files are in mm, the project in m
+
+gp_Pnt mm(const Vec3& p) { return gp_Pnt(p.x() * kMm, p.y() * kMm, p.z() * kMm); }
+gp_Dir dir(const Vec3& v) { return gp_Dir(v.x(), v.y(), v.z()); }
+
+// The flat sheet as one planar face in z = 0 (mm, top side +z): the outline
+// (counter-clockwise) with a circular hole per rivet hole; `shift` (m) is
+// subtracted from every point (flat.dxf's drawing origin, or zero).
+TopoDS_Face flat_face(const FlatPattern& flat, const std::vector<RivetHole>& holes, const Vec2& shift) {
+  BRepBuilderAPI_MakePolygon poly;
+  for (const Vec2& q : flat.outline) poly.Add(gp_Pnt((q.x() - shift.x()) * kMm, (q.y() - shift.y()) * kMm, 0));
+  poly.Close();
+  if (!poly.IsDone()) throw std::runtime_error("the flat outline is not a closed polygon");
+  BRepBuilderAPI_MakeFace face(gp_Pln(gp::XOY()), poly.Wire(), true);
+  for (const RivetHole& h : holes) {
+    const gp_Pnt c((h.flat.x() - shift.x()) * kMm, (h.flat.y() - shift.y()) * kMm, 0);
+    const gp_Circ circle(gp_Ax2(c, gp::DZ()), 0.5 * h.diameter * kMm);
+    const TopoDS_Wire w = BRepBuilderAPI_MakeWire(BRepBuilderAPI_MakeEdge(circle).Edge()).Wire();
+    face.Add(TopoDS::Wire(w.Reversed()));  // a hole runs clockwise seen from the top
+  }
+  if (!face.IsDone()) throw std::runtime_error("the flat outline does not make a face");
+  ShapeFix_Face fix(face.Face());  // orients the hole wires whatever their start
+  fix.Perform();
+  return fix.Face();
+}
+
+// A polygon face in z = 0 from flat points (m).
+TopoDS_Face polygon_face(const std::vector<Vec2>& pts) {
+  BRepBuilderAPI_MakePolygon poly;
+  for (const Vec2& q : pts) poly.Add(gp_Pnt(q.x() * kMm, q.y() * kMm, 0));
+  poly.Close();
+  return BRepBuilderAPI_MakeFace(gp_Pln(gp::XOY()), poly.Wire(), true).Face();
+}
+
+std::vector<TopoDS_Face> faces_of(const TopoDS_Shape& s) {
+  std::vector<TopoDS_Face> out;
+  for (TopExp_Explorer x(s, TopAbs_FACE); x.More(); x.Next()) out.push_back(TopoDS::Face(x.Current()));
+  return out;
+}
+
+// A point strictly inside a face in z = 0, in m: the centroid of one triangle of its mesh
+// (the face's centroid may lie in a notch or a hole).
+Vec2 interior_point(const TopoDS_Face& face) {
+  BRepMesh_IncrementalMesh mesh(face, 0.5);  // mm; any mesh will do
+  TopLoc_Location loc;
+  const Handle(Poly_Triangulation) tri = BRep_Tool::Triangulation(face, loc);
+  if (tri.IsNull() || tri->NbTriangles() == 0) throw std::runtime_error("a flat region could not be meshed");
+  int a, b, c;
+  tri->Triangle(1).Get(a, b, c);
+  const gp_XYZ g = (tri->Node(a).XYZ() + tri->Node(b).XYZ() + tri->Node(c).XYZ()) / 3.0;
+  return Vec2(g.X(), g.Y()) / kMm;
+}
+
+// Bend zone of one bend in the flat (m): the sheet between its two tangent
+// lines (-SB and BA - SB from the sharp line), as two convex polygons: the
+// tab's own piece up to BA - SB, and the parent's piece from -SB to the sharp
+// line across the root J0..J1. The relief notches beside the root make that
+// rectangle the whole of the parent's sheet that bends. Where a bend ends at
+// its parent's corner (no notch), the parent's sheet beyond the root stays
+// flat: the bend is ripped from it along its end line (docs/cad.md).
+std::vector<std::vector<Vec2>> bend_zone_polygons(const FlatPattern& flat, const FlatBend& b) {
+  const Vec2 E = (b.b - b.a).normalized(), O = b.outward, J0 = b.root_a;
+  const double root_width = (b.root_b - b.root_a).dot(E);
+  // clip_half_plane keeps n . q >= c; s = (q - J0) . O, a = (q - J0) . E.
+  std::vector<Vec2> child = clip_half_plane(flat.pieces[b.tab].polygon, -O, -(J0.dot(O) + b.allowance - b.setback));
+  std::vector<Vec2> parent = flat.pieces[b.parent].polygon;
+  parent = clip_half_plane(parent, O, J0.dot(O) - b.setback);
+  parent = clip_half_plane(parent, -O, -J0.dot(O));
+  parent = clip_half_plane(parent, E, J0.dot(E));
+  parent = clip_half_plane(parent, -E, -(J0.dot(E) + root_width));
+  std::vector<std::vector<Vec2>> out;
+  for (auto* poly : {&parent, &child})
+    if (poly->size() >= 3 && std::abs(signed_area(*poly)) > 1e-12) out.push_back(*poly);  // > 1 mm^2 x 1e-6
+  if (out.empty()) throw std::runtime_error("the bend zone of tab " + std::to_string(b.tab) + " is empty");
+  return out;
+}
+
+// The tab whose flat piece holds `q` (m): the pieces tile the sheet outside the notches.
+int piece_at(const FlatPattern& flat, const Vec2& q) {
+  int best = -1;
+  double best_d = std::numeric_limits<double>::infinity();
+  for (const FlatPiece& p : flat.pieces) {
+    if (p.polygon.size() < 3) continue;
+    if (point_in_convex(q, p.polygon, 1e-9)) return p.tab;
+    const Vec2 c = polygon_centroid(p.polygon);
+    if ((c - q).norm() < best_d) best_d = (c - q).norm(), best = p.tab;
+  }
+  return best;
+}
+
+gp_Trsf to_gp(const FlatPieceTransform& m) {
+  const Eigen::Matrix3d& R = m.rotation;
+  const Vec3 T = m.translation * kMm;
+  gp_Trsf t;
+  t.SetValues(R(0, 0), R(0, 1), R(0, 2), T.x(), R(1, 0), R(1, 1), R(1, 2), T.y(), R(2, 0), R(2, 1), R(2, 2), T.z());
+  return t;
+}
+
+// The wire of a bend zone (flat, mm) mapped into the (u, v) plane of its
+// cylinder, as edges on `cyl`: counter-clockwise when `outer`, clockwise otherwise.
+TopoDS_Wire wrap_wire(const TopoDS_Wire& w, const TopoDS_Face& zone, const Handle(Geom_CylindricalSurface)& cyl,
+                      const std::function<gp_Pnt2d(const gp_Pnt&)>& uv, bool outer, int tab) {
+  std::vector<gp_Pnt2d> pts;
+  for (BRepTools_WireExplorer xe(w, zone); xe.More(); xe.Next()) {
+    if (BRepAdaptor_Curve(xe.Current()).GetType() != GeomAbs_Line)
+      throw std::runtime_error("a curved edge (a hole?) lies in the bend zone of tab " + std::to_string(tab));
+    pts.push_back(uv(BRep_Tool::Pnt(xe.CurrentVertex())));
+  }
+  double area2 = 0;  // twice the signed area in (u, v)
+  for (size_t i = 0; i < pts.size(); ++i) {
+    const gp_Pnt2d &p = pts[i], &q = pts[(i + 1) % pts.size()];
+    area2 += p.X() * q.Y() - q.X() * p.Y();
+  }
+  if ((area2 > 0) != outer) std::reverse(pts.begin(), pts.end());
+  std::vector<TopoDS_Vertex> verts;
+  for (const gp_Pnt2d& p : pts) verts.push_back(BRepBuilderAPI_MakeVertex(cyl->Value(p.X(), p.Y())));
+  BRepBuilderAPI_MakeWire wire;
+  for (size_t i = 0; i < pts.size(); ++i) {
+    const size_t j = (i + 1) % pts.size();
+    const Handle(Geom2d_TrimmedCurve) seg = GCE2d_MakeSegment(pts[i], pts[j]).Value();
+    wire.Add(BRepBuilderAPI_MakeEdge(seg, cyl, verts[i], verts[j], seg->FirstParameter(), seg->LastParameter()).Edge());
+  }
+  if (!wire.IsDone()) throw std::runtime_error("the bend zone of tab " + std::to_string(tab) + " is not a closed wire");
+  return wire.Wire();
+}
+
+// One bend zone (flat, mm) laid on the mid-surface cylinder of its bend (mm, world).
+// The cylinder's (u, v) are an affine image of the flat: u = angle = (s + SB) /
+// (R + K t), so the neutral fibre keeps the flat length (the bend allowance),
+// and v = distance along the axis. Straight flat edges become lines in (u, v),
+// i.e. helices on the cylinder (circles where they cross the axis square).
+TopoDS_Face wrap_bend_zone(const TopoDS_Face& zone, const FlatBend& b, const FlatPieceTransform& parent, double t) {
+  const double theta = std::abs(b.angle), sigma = b.angle > 0 ? 1.0 : -1.0;
+  const double neutral = b.allowance / theta;       // m, R + K t
+  const double rho = b.inside_radius + 0.5 * t;     // m, mid-surface radius
+  const Vec2 E = (b.b - b.a).normalized(), O = b.outward, J0 = b.root_a;
+  const Vec3 e_w = parent.rotation * Vec3(E.x(), E.y(), 0), u_w = parent.rotation * Vec3(O.x(), O.y(), 0);
+  const Vec3 n_w = parent.rotation.col(2);
+  const Vec3 tangent0 = parent.apply(J0 - b.setback * O);  // parent's tangent line at a = 0
+  // Axis on the inside of the bend; u = 0 at the parent's tangent line, u grows towards the tab.
+  const Vec3 x_dir = -sigma * n_w, z_dir = x_dir.cross(u_w);  // y_dir = z x x = u_w
+  const Handle(Geom_CylindricalSurface) cyl =
+      new Geom_CylindricalSurface(gp_Ax3(mm(tangent0 + sigma * rho * n_w), dir(z_dir), dir(x_dir)), rho * kMm);
+  const double v_sign = e_w.dot(z_dir) > 0 ? 1.0 : -1.0;
+  const std::function<gp_Pnt2d(const gp_Pnt&)> uv = [&](const gp_Pnt& p) {  // p: flat, mm
+    const Vec2 q = Vec2(p.X(), p.Y()) / kMm - J0;
+    return gp_Pnt2d((q.dot(O) + b.setback) / neutral, v_sign * q.dot(E) * kMm);
+  };
+  const TopoDS_Wire outer = BRepTools::OuterWire(zone);
+  BRepBuilderAPI_MakeFace face(cyl, wrap_wire(outer, zone, cyl, uv, true, b.tab), true);
+  for (TopExp_Explorer xw(zone, TopAbs_WIRE); xw.More(); xw.Next())
+    if (!xw.Current().IsSame(outer)) face.Add(wrap_wire(TopoDS::Wire(xw.Current()), zone, cyl, uv, false, b.tab));
+  if (!face.IsDone()) throw std::runtime_error("the bend face of tab " + std::to_string(b.tab) + " could not be built");
+  TopoDS_Face f = face.Face();
+  BRepLib::BuildCurves3d(f, 1e-6);
+  ShapeFix_Face fix(f);
+  fix.Perform();
+  return fix.Face();
+}
+
+// The part's mid-surface (mm, world) as one shell: the sheet outside the bend
+// zones moved rigidly piece by piece, every bend zone wrapped onto its
+// cylinder, sewn along the tangent lines (where the faces meet tangentially).
+TopoDS_Shell mid_surface(const FlatPattern& flat, const StepExportOptions& o) {
+  const TopoDS_Face sheet = flat_face(flat, {}, Vec2::Zero());
+  const std::vector<FlatPieceTransform> maps = fold_transforms(flat);
+  BRepBuilderAPI_Sewing sew(o.sewing_tolerance * kMm);
+  TopTools_ListOfShape zones;
+  for (const FlatBend& b : flat.bends)
+    for (const std::vector<Vec2>& poly : bend_zone_polygons(flat, b)) {
+      const TopoDS_Face zone = polygon_face(poly);
+      zones.Append(zone);
+      sew.Add(wrap_bend_zone(zone, b, maps[b.parent], o.thickness));
+    }
+  TopoDS_Shape planar = sheet;
+  if (!zones.IsEmpty()) {
+    TopTools_ListOfShape args;
+    args.Append(sheet);
+    BRepAlgoAPI_Cut cut;
+    cut.SetArguments(args);
+    cut.SetTools(zones);
+    cut.SetFuzzyValue(1e-6);  // mm: zone sides lie on the outline's edges
+    cut.Build();
+    if (!cut.IsDone() || cut.HasErrors()) throw std::runtime_error("cutting the bend zones out of the flat sheet failed");
+    planar = cut.Shape();
+  }
+  for (const TopoDS_Face& f : faces_of(planar)) {
+    const int tab = piece_at(flat, interior_point(f));
+    if (tab < 0) throw std::runtime_error("a flat region belongs to no tab");
+    sew.Add(BRepBuilderAPI_Transform(f, to_gp(maps[tab]), true).Shape());
+  }
+  sew.Perform();
+  std::vector<TopoDS_Shell> shells;
+  for (TopExp_Explorer x(sew.SewedShape(), TopAbs_SHELL); x.More(); x.Next()) shells.push_back(TopoDS::Shell(x.Current()));
+  if (shells.size() != 1)
+    throw std::runtime_error("the bent sheet sewed into " + std::to_string(shells.size()) + " pieces instead of one");
+  return shells[0];
+}
+
+// The mid-surface thickened by t/2 to each side. OpenCASCADE's simple offset
+// fits: the faces meet tangentially (planes and cylinders, G1 across every
+// tangent line), so every face offsets to a face of the same kind and the
+// walls along the cut edges are ruled between the two offset edges.
+TopoDS_Solid thicken(const TopoDS_Shell& mid, double t_mm) {
+  BRepOffsetAPI_MakeOffsetShape bottom;
+  bottom.PerformBySimple(mid, -0.5 * t_mm);
+  if (!bottom.IsDone()) throw std::runtime_error("offsetting the bent sheet by -t/2 failed");
+  BRepOffsetAPI_MakeThickSolid thick;
+  thick.MakeThickSolidBySimple(bottom.Shape(), t_mm);
+  if (!thick.IsDone()) throw std::runtime_error("thickening the bent sheet failed");
+  for (TopExp_Explorer x(thick.Shape(), TopAbs_SOLID); x.More(); x.Next()) {
+    TopoDS_Solid solid = TopoDS::Solid(x.Current());
+    // The offset keeps the shell's orientation, which sewing chose freely: turn the solid outside out.
+    if (!BRepLib::OrientClosedSolid(solid)) throw std::runtime_error("the thickened sheet is not a closed solid");
+    return solid;
+  }
+  throw std::runtime_error("thickening the bent sheet gave no solid");
+}
+
+StepSolidReport measure(const TopoDS_Shape& shape, double inside_radius_mm, double t_mm) {
+  StepSolidReport r;
+  for (TopExp_Explorer x(shape, TopAbs_SOLID); x.More(); x.Next()) ++r.solids;
+  r.valid = BRepCheck_Analyzer(shape).IsValid();
+  GProp_GProps props;
+  BRepGProp::VolumeProperties(shape, props);
+  r.volume_mm3 = props.Mass();
+  const double tol = 1e-3;  // mm
+  for (const TopoDS_Face& f : faces_of(shape)) {
+    ++r.faces;
+    const BRepAdaptor_Surface s(f);
+    if (s.GetType() != GeomAbs_Cylinder) continue;
+    const double radius = s.Cylinder().Radius();
+    if (std::abs(radius - inside_radius_mm) < tol || std::abs(radius - inside_radius_mm - t_mm) < tol)
+      ++r.bend_faces;
+    else
+      ++r.hole_faces;
+  }
+  Bnd_Box box;
+  BRepBndLib::AddOptimal(shape, box, false, false);
+  box.Get(r.box_min_mm[0], r.box_min_mm[1], r.box_min_mm[2], r.box_max_mm[0], r.box_max_mm[1], r.box_max_mm[2]);
+  return r;
+}
+
+double inside_radius_mm(const FlatPattern& flat) {
+  return flat.bends.empty() ? -1 : flat.bends.front().inside_radius * kMm;
+}
+
+// The holes drilled square through their sheets after thickening, so a hole's
+// wall is a true cylinder (a CAD system recognises it as a hole) rather than
+// the ruled face the offset makes. Each drill spans exactly its sheet's
+// thickness, so it cannot touch the other sheet of a self-rivet pair.
+TopoDS_Shape drill_holes(const TopoDS_Solid& solid, const FlatPattern& flat, const std::vector<RivetHole>& holes,
+                         double t) {
+  if (holes.empty()) return solid;
+  const std::vector<FlatPieceTransform> maps = fold_transforms(flat);
+  TopTools_ListOfShape drills;
+  for (const RivetHole& h : holes) {
+    if (h.tab < 0 || h.tab >= static_cast<int>(maps.size()))
+      throw std::invalid_argument("rivet hole " + hole_label(h) + " names tab " + std::to_string(h.tab));
+    const Vec3 n = maps[h.tab].rotation.col(2);
+    const Vec3 bottom = maps[h.tab].apply(h.flat) - 0.5 * t * n;
+    drills.Append(BRepPrimAPI_MakeCylinder(gp_Ax2(mm(bottom), dir(n)), 0.5 * h.diameter * kMm, t * kMm).Shape());
+  }
+  TopTools_ListOfShape args;
+  args.Append(solid);
+  BRepAlgoAPI_Cut cut;
+  cut.SetArguments(args);
+  cut.SetTools(drills);
+  cut.SetFuzzyValue(1e-5);  // mm: the drills' caps lie on the sheet's faces
+  cut.Build();
+  if (!cut.IsDone() || cut.HasErrors()) throw std::runtime_error("drilling the rivet holes failed");
+  std::vector<TopoDS_Shape> solids;  // the cut returns a compound; the file gets the solid itself
+  for (TopExp_Explorer x(cut.Shape(), TopAbs_SOLID); x.More(); x.Next()) solids.push_back(x.Current());
+  return solids.size() == 1 ? solids[0] : cut.Shape();
+}
+
+TopoDS_Shape bent_solid(const FlatPattern& flat, const std::vector<RivetHole>& holes, const StepExportOptions& o) {
+  if (!flat.ok()) throw std::invalid_argument("the flat pattern is not valid: " + flat.message);
+  if (!(o.thickness > 0)) throw std::invalid_argument("StepExportOptions::thickness must be > 0 m");
+  const TopoDS_Solid sheet = thicken(mid_surface(flat, o), o.thickness * kMm);
+  // One face per surface: each bend zone was wrapped as two pieces (parent's and tab's side).
+  ShapeUpgrade_UnifySameDomain unify(drill_holes(sheet, flat, holes, o.thickness), true, true, false);
+  unify.Build();
+  return unify.Shape();
+}
+
+TopoDS_Solid flat_solid(const FlatPattern& flat, const std::vector<RivetHole>& holes, const StepExportOptions& o) {
+  if (flat.outline.size() < 3) throw std::invalid_argument("the flat pattern has no outline");
+  if (!(o.thickness > 0)) throw std::invalid_argument("StepExportOptions::thickness must be > 0 m");
+  Vec2 origin = Vec2::Constant(std::numeric_limits<double>::infinity());  // flat.dxf's drawing origin
+  for (const Vec2& q : flat.outline) origin = origin.cwiseMin(q);
+  BRepPrimAPI_MakePrism prism(flat_face(flat, holes, origin), gp_Vec(0, 0, o.thickness * kMm));
+  return TopoDS::Solid(prism.Shape());
+}
+
+// STEP writing goes through OpenCASCADE's global parameters (Interface_Static), hence one writer at a time.
+std::mutex step_writer_mutex;
+
+// The STEP writer reports its progress on stdout, which is the CLI's summary
+// (and a Blender user's console): silenced while it runs.
+struct QuietMessenger {
+  Message_SequenceOfPrinters saved;
+  QuietMessenger() : saved(Message::DefaultMessenger()->Printers()) { Message::DefaultMessenger()->ChangePrinters().Clear(); }
+  ~QuietMessenger() { Message::DefaultMessenger()->ChangePrinters() = saved; }
+};
+
+void write_step(const std::string& path, const TopoDS_Shape& shape, const StepExportOptions& o) {
+  namespace fs = std::filesystem;
+  const fs::path target = fs::u8path(path);
+  const fs::path tmp = target.parent_path() / (target.filename().u8string() + ".tmp-" + std::to_string(::getpid()));
+  {
+    std::lock_guard<std::mutex> lock(step_writer_mutex);
+    const QuietMessenger quiet;
+    STEPControl_Writer writer;
+    Interface_Static::SetCVal("write.step.schema", "AP214IS");
+    Interface_Static::SetCVal("write.step.unit", "MM");
+    Interface_Static::SetCVal("write.step.product.name", o.product.c_str());
+    if (writer.Transfer(shape, STEPControl_AsIs) != IFSelect_RetDone)
+      throw std::runtime_error("cannot write " + path + ": the solid could not be translated to STEP");
+    if (writer.Write(tmp.u8string().c_str()) != IFSelect_RetDone) {
+      std::error_code ec;
+      fs::remove(tmp, ec);
+      throw std::runtime_error("cannot write " + path + " (is its folder there and writable?)");
+    }
+  }
+  std::error_code ec;
+  fs::rename(tmp, target, ec);
+  if (ec) {
+    fs::remove(tmp, ec);
+    throw std::runtime_error("cannot write " + path + ": " + ec.message());
+  }
+}
+
+// OpenCASCADE reports failures as Standard_Failure; callers see one runtime_error.
+template <class F>
+auto guarded(const char* what, F&& f) {
+  try {
+    return f();
+  } catch (const Standard_Failure& e) {
+    throw std::runtime_error(std::string(what) + ": OpenCASCADE failed (" + e.GetMessageString() + ")");
+  }
+}
+
+}  // namespace
+
+StepSolidReport bent_part_solid_report(const FlatPattern& flat, const std::vector<RivetHole>& holes,
+                                       const StepExportOptions& options) {
+  return guarded("building the bent solid", [&] {
+    return measure(bent_solid(flat, holes, options), inside_radius_mm(flat), options.thickness * kMm);
+  });
+}
+
+StepSolidReport write_part_step(const std::string& path, const FlatPattern& flat, const std::vector<RivetHole>& holes,
+                                const StepExportOptions& options) {
+  return guarded(path.c_str(), [&] {
+    const TopoDS_Shape solid = bent_solid(flat, holes, options);
+    StepSolidReport r = measure(solid, inside_radius_mm(flat), options.thickness * kMm);
+    if (r.solids != 1 || !r.valid) throw std::runtime_error("cannot write " + path + ": the bent solid is not valid");
+    write_step(path, solid, options);
+    return r;
+  });
+}
+
+StepSolidReport write_flat_step(const std::string& path, const FlatPattern& flat, const std::vector<RivetHole>& holes,
+                                const StepExportOptions& options) {
+  return guarded(path.c_str(), [&] {
+    const TopoDS_Solid solid = flat_solid(flat, holes, options);
+    StepSolidReport r = measure(solid, inside_radius_mm(flat), options.thickness * kMm);
+    if (!r.valid) throw std::runtime_error("cannot write " + path + ": the flat solid is not valid");
+    write_step(path, solid, options);
+    return r;
+  });
+}
+
+}  // namespace sheetgen
