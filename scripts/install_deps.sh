@@ -19,6 +19,9 @@ PACKAGES=(
   blender calculix-ccx python3-ezdxf python3-shapely python3-matplotlib python3-pil
   # the solid reference model of tools/sheetgen_tools/solid_reference.py (OpenCASCADE + mesher)
   python3-gmsh
+  # STEP of the bent part and flat pattern (native/sheetgen/cad, OpenCASCADE 7.6), and FreeCAD reading them back
+  libocct-foundation-dev libocct-modeling-data-dev libocct-modeling-algorithms-dev libocct-data-exchange-dev
+  freecad
   # sheetgen-farm (docs/farm.md): Dask distributed (scheduler, workers, client; pulls in python3-dask,
   # python3-tornado), psutil (the farm test looks for solver processes) and the progress bar
   python3-distributed python3-psutil python3-tqdm
