@@ -106,6 +106,8 @@ json load_entry(const Problem& problem, const LoadOutcome& o) {
 
 }  // namespace
 
+json load_result_json(const Problem& problem, const LoadOutcome& outcome) { return load_entry(problem, outcome); }
+
 json result_json(const Problem& problem, const GenerateResult& result, const std::string& problem_ref) {
   json parts = json::array();
   for (const LoadOutcome& o : result.loads) parts.push_back(load_entry(problem, o));

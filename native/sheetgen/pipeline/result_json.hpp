@@ -16,4 +16,8 @@ namespace sheetgen {
 // export-ccx can rebuild the loads.
 nlohmann::json result_json(const Problem& problem, const GenerateResult& result, const std::string& problem_ref);
 
+// One load's entry of parts[] (what result_json writes for it): the drawing
+// sheet is drawn from it (pipeline/part_drawing.hpp).
+nlohmann::json load_result_json(const Problem& problem, const LoadOutcome& outcome);
+
 }  // namespace sheetgen
