@@ -25,6 +25,8 @@ PACKAGES=(
   # sheetgen-farm (docs/farm.md): Dask distributed (scheduler, workers, client; pulls in python3-dask,
   # python3-tornado), psutil (the farm test looks for solver processes) and the progress bar
   python3-distributed python3-psutil python3-tqdm
+  # the drawing sheet read back by its test (pdfinfo, pdftotext, pdftocairo, pdftoppm; docs/drawing.md)
+  poppler-utils
   # screenshots of the Blender UI (scripts/make_screenshots.py)
   xvfb
   # function lengths of the C++ code (scripts/function_lengths.py)
