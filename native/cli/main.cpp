@@ -145,7 +145,7 @@ struct ExportCcxArgs {
   double element_size_mm = 0;  // mm; <= 0: default_element_size (docs/fem.md)
   bool solve = false;
   std::string displacements;  // with --solve: CSV of our displacements by deck node id (m)
-  std::string element_type = "S4";  // CalculiX element: S4 (split triangles) or S8R (the same with mid-side nodes)
+  std::string element_type = "S4";  // CalculiX element: S4 (split triangles), S8R (the same with mid-side nodes) or S6 (our triangles, quadratic)
   bool kirchhoff = false;           // with --solve: our DKT (no transverse shear) instead of DKMT, for studies
   std::string buckle;               // load case of the *BUCKLE step (name or index); "": the first case; "none": no step
   int modes = 3;                    // eigenfrequencies the *FREQUENCY step asks for; 0: no step
@@ -475,8 +475,8 @@ CLI::App* add_export_ccx_command(CLI::App& app, ExportCcxArgs& a) {
   ccx->add_option("--displacements", a.displacements,
                   "with --solve: write our displacements by deck node id to this CSV (m), to compare with CalculiX's .dat");
   ccx->add_option("--element-type", a.element_type,
-                  "CalculiX element: S4 (default) or S8R (quadratic; the accuracy reference, docs/fem.md)")
-      ->check(CLI::IsMember({"S4", "S8R"}));
+                  "CalculiX element: S4 (default; split triangles), S6 (our triangles, quadratic: the compliance reference, docs/fem.md) or S8R (split triangles, quadratic)")
+      ->check(CLI::IsMember({"S4", "S6", "S8R"}));
   ccx->add_flag("--kirchhoff", a.kirchhoff,
                 "with --solve: solve with DKT (no transverse shear) instead of the default DKMT, for studies");
   ccx->add_option("--buckle", a.buckle,

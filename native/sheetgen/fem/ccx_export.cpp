@@ -72,8 +72,9 @@ std::string str(double v) {
 }
 
 void check_export_options(const ShellModel& m, const CcxExportOptions& options) {
-  if (options.element_type != "S4" && options.element_type != "S4R" && options.element_type != "S8R")
-    throw FemError("ccx export options.element_type", "must be S4, S4R or S8R (got " + options.element_type + ")");
+  if (options.element_type != "S4" && options.element_type != "S4R" && options.element_type != "S8R" &&
+      options.element_type != "S6")
+    throw FemError("ccx export options.element_type", "must be S4, S4R, S6 or S8R (got " + options.element_type + ")");
   const std::vector<ShellLoadCase> cases = m.cases();
   const std::string field = "ccx export options.";
   if (options.buckle_case < -1 || options.buckle_case >= static_cast<int>(cases.size()))
@@ -155,21 +156,33 @@ void hold_split_node(const ModelHolds& h, int id, std::initializer_list<int> cor
   else if (one_link) d.held_linked[h.link_of[first]].push_back(id);
 }
 
+// The midpoint of a model edge as a deck node, written once and shared by the
+// two triangles of the edge (so the deck's mesh is conforming), held like its ends.
+class EdgeMidpoints {
+ public:
+  EdgeMidpoints(const ShellModel& m, const ModelHolds& h, Deck& d) : m_(m), h_(h), d_(d) {}
+  int operator()(int a, int b) {
+    const long long key = static_cast<long long>(std::min(a, b)) * static_cast<long long>(m_.nodes.size()) + std::max(a, b);
+    auto it = id_.find(key);
+    if (it != id_.end()) return it->second;
+    const int id = ++d_.next;
+    d_.node(id, 0.5 * (m_.nodes[a] + m_.nodes[b]));
+    id_.emplace(key, id);
+    hold_split_node(h_, id, {a, b}, d_);
+    return id;
+  }
+
+ private:
+  const ShellModel& m_;
+  const ModelHolds& h_;
+  Deck& d_;
+  std::unordered_map<long long, int> id_;
+};
+
 // Splits every triangle into three quads through its edge midpoints (shared
 // between neighbours) and its centroid, writing the new nodes.
 std::vector<Quad> split_into_quads(const ShellModel& m, const ModelHolds& h, Deck& d) {
-  std::unordered_map<long long, int> midpoint;
-  auto mid = [&](int a, int b) {
-    const long long key = static_cast<long long>(std::min(a, b)) * static_cast<long long>(m.nodes.size()) + std::max(a, b);
-    auto it = midpoint.find(key);
-    if (it != midpoint.end()) return it->second;
-    const Vec3 p = 0.5 * (m.nodes[a] + m.nodes[b]);
-    const int id = ++d.next;
-    d.node(id, p);
-    midpoint.emplace(key, id);
-    hold_split_node(h, id, {a, b}, d);
-    return id;
-  };
+  EdgeMidpoints mid(m, h, d);
   std::vector<Quad> quads;
   quads.reserve(3 * m.triangles.size());
   for (const auto& t : m.triangles) {
@@ -185,6 +198,18 @@ std::vector<Quad> split_into_quads(const ShellModel& m, const ModelHolds& h, Dec
     quads.push_back({id[t[2]], m20, cid, m12});
   }
   return quads;
+}
+
+// S6: our triangles themselves, quadratic, with a node at each edge midpoint
+// (CalculiX's order: the three corners, then the sides 12, 23, 31).
+std::vector<std::vector<int>> quadratic_triangles(const ShellModel& m, const ModelHolds& h, Deck& d) {
+  EdgeMidpoints mid(m, h, d);
+  std::vector<std::vector<int>> elements;
+  elements.reserve(m.triangles.size());
+  const std::vector<int>& id = d.map.node_id;
+  for (const auto& t : m.triangles)
+    elements.push_back({id[t[0]], id[t[1]], id[t[2]], mid(t[0], t[1]), mid(t[1], t[2]), mid(t[2], t[0])});
+  return elements;
 }
 
 // S8R: a mid-side node on every quad edge, held like the split nodes (clamped
@@ -217,6 +242,20 @@ std::vector<Quad> add_side_nodes(const ShellModel& m, const ModelHolds& h, const
   std::vector<Quad> sides;
   for (const auto& q : quads) sides.push_back({side(q[0], q[1]), side(q[1], q[2]), side(q[2], q[3]), side(q[3], q[0])});
   return sides;
+}
+
+// The deck's elements as lists of deck node ids, writing the nodes they add.
+std::vector<std::vector<int>> deck_elements(const ShellModel& m, const ModelHolds& h, const std::string& type, Deck& d) {
+  if (type == "S6") return quadratic_triangles(m, h, d);
+  const std::vector<Quad> quads = split_into_quads(m, h, d);
+  const std::vector<Quad> sides = type == "S8R" ? add_side_nodes(m, h, quads, d) : std::vector<Quad>{};
+  std::vector<std::vector<int>> elements;
+  elements.reserve(quads.size());
+  for (size_t k = 0; k < quads.size(); ++k) {
+    elements.emplace_back(quads[k].begin(), quads[k].end());
+    if (!sides.empty()) elements.back().insert(elements.back().end(), sides[k].begin(), sides[k].end());
+  }
+  return elements;
 }
 
 // Rigid-link reference and rotation nodes.
@@ -265,15 +304,14 @@ std::vector<MassBody> write_mass_nodes(const ShellModel& m, const ModelHolds& h,
 }
 
 // Elements, material, section and rigid bodies.
-void write_elements(const ShellModel& m, const ModelHolds& h, const std::vector<Quad>& quads, const std::vector<Quad>& sides,
+void write_elements(const ShellModel& m, const ModelHolds& h, const std::vector<std::vector<int>>& elements,
                     const std::string& element_type, Deck& d) {
   std::ostream& out = d.out;
   out << "*ELEMENT, TYPE=" << element_type << ", ELSET=EALL\n";
   int eid = 0;
-  for (size_t k = 0; k < quads.size(); ++k) {
-    const auto& q = quads[k];
-    out << ++eid << ", " << q[0] << ", " << q[1] << ", " << q[2] << ", " << q[3];
-    if (!sides.empty()) out << ", " << sides[k][0] << ", " << sides[k][1] << ", " << sides[k][2] << ", " << sides[k][3];
+  for (const std::vector<int>& e : elements) {
+    out << ++eid;
+    for (int id : e) out << ", " << id;
     out << "\n";
   }
   d.map.element_count = eid;
@@ -458,14 +496,13 @@ CcxDeckMap write_ccx_deck(const ShellModel& m, std::ostream& out, const CcxExpor
   Deck d(out);
   d.held_linked.resize(m.rigid_links.size());
   write_model_nodes(m, h, options, d);
-  const std::vector<Quad> quads = split_into_quads(m, h, d);
-  const std::vector<Quad> sides = options.element_type == "S8R" ? add_side_nodes(m, h, quads, d) : std::vector<Quad>{};
+  const std::vector<std::vector<int>> elements = deck_elements(m, h, options.element_type, d);
   write_link_nodes(m, h, d);
   // The masses matter to the frequency step alone; a static deck stays without them.
   std::vector<MassBody> bodies;
   if (options.frequency_modes > 0) bodies = write_mass_nodes(m, h, d);
   d.map.node_count = d.next;
-  write_elements(m, h, quads, sides, options.element_type, d);
+  write_elements(m, h, elements, options.element_type, d);
   write_mass_bodies(bodies, d);
   const DofTarget target(m, h, d.map);
   write_boundary(m, target, d);

@@ -3,10 +3,11 @@
 // output, and a runner - for engineers who verify elsewhere
 // (`sheetgen export-ccx`) and for the validation tests (docs/fem.md "CalculiX").
 //
-// CalculiX's S3 locks (-21 % on the cantilever strip, docs/platform.md), so each
-// triangle becomes three quadrilaterals (corner, edge midpoint, centroid, edge
-// midpoint); midpoints are shared by the two triangles of an edge, so the quad
-// mesh is conforming. Elements are S4 (full integration, incompatible modes).
+// CalculiX's S3 locks (-21 % on the cantilever strip, docs/platform.md). The
+// deck is either our triangles as quadratic S6 (a node added at each edge
+// midpoint) or each triangle split into three quadrilaterals (corner, edge
+// midpoint, centroid, edge midpoint) as S4, S4R or S8R; midpoints are shared by
+// the two triangles of an edge, so the deck's mesh is conforming.
 // Rigid links become *RIGID BODY with a REF NODE (translations) and a ROT NODE
 // (whose "translations" are the rotations); supports become *BOUNDARY in the
 // model section, each load case its own *STATIC step with *CLOAD. Optional
@@ -27,10 +28,11 @@ namespace sheetgen {
 
 struct CcxExportOptions {
   std::string heading = "sheetgen flat-shell model";
-  // "S4", "S4R" or "S8R"; triangles are split into 3 quads either way. S8R
-  // (quadratic, a mid-side node per quad edge) is the reference for our
-  // element's accuracy: S4 on split triangles converges slowly from below
-  // (docs/fem.md "Transverse shear").
+  // "S4", "S4R", "S6" or "S8R". S6 keeps our triangles (quadratic, six
+  // nodes); the others split each into 3 quads (S8R with a mid-side node per
+  // quad edge). S6 is the compliance reference on real parts: on the split
+  // triangles S8R is 3-10 % softer than the solid C3D10 model and S4 a few %
+  // stiffer (docs/fem.md "Which CalculiX element").
   std::string element_type = "S4";
   // A *BUCKLE step for this case of model.cases() (index from 0); -1: none.
   // ccx scales the loads given in that step alone (no preload), so each
@@ -50,7 +52,7 @@ struct CcxDeckMap {
   std::vector<int> rot_node;       // per rigid link: its ROT NODE id (rotations of the master)
   std::vector<int> mass_ref_node;  // per point mass: the REF NODE of the rigid body that carries it
   int node_count = 0;              // deck nodes
-  int element_count = 0;           // deck quads (3 per triangle)
+  int element_count = 0;           // deck shell elements (per triangle: 1 S6, or 3 quads)
   int mass_element_count = 0;      // MASS elements (1 to 7 per point mass)
   int static_steps = 0;            // one per model.cases(), after the eigenvalue steps
 };

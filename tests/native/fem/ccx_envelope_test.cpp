@@ -244,23 +244,28 @@ CcxEnvelope run(const ShellModel& m, const std::string& name, const CcxExportOpt
 // Clamped-free column: P_cr = pi^2 EI / (4 L^2). nu = 0 makes the plate strip a
 // beam; L/t = 100 puts transverse shear at P/(kGA) ~ 1e-5; 20 quadratic S8R
 // along L resolve the quarter-wave mode far below 0.1 %. 1 % covers ccx's
-// expansion of S8R into one layer of C3D20R through the thickness.
+// expansion of S8R into one layer of C3D20R (S6: C3D15) through the thickness.
+// Both deck elements: S6 is the compliance reference on real parts
+// (docs/fem.md "Which CalculiX element"), S8R the element of the other tests.
 TEST(CcxEnvelope, ClampedFreeStripBucklesAtTheEulerLoadInCalculix) {
-  Strip s = cantilever_strip();
-  s.model.add_load(s.tip, Vec3(-1, 0, 0));  // 1 N compression: the factor is P_cr in N
-  CcxExportOptions o;
-  o.element_type = "S8R";
-  o.buckle_case = 0;
-  o.buckling_factors = 2;
-  const CcxEnvelope env = run(s.model, "euler", o);
-  const double euler = M_PI * M_PI * s.bending_stiffness() / (4 * s.length * s.length);
-  ASSERT_FALSE(env.buckling_factors.empty());
-  std::printf("clamped-free strip: ccx S8R buckling factor %.6g, Euler %.6g N (%+.3f %%)\n", env.buckling_factors[0],
-              euler, 100 * (env.buckling_factors[0] / euler - 1));
-  EXPECT_NEAR(env.buckling_factors[0], euler, 0.01 * euler);
-  // The static step of the same deck: the end shortens by P L / (E A).
-  EXPECT_NEAR(env.cases[0].load_deflection, s.length / (s.youngs_modulus * s.width * s.thickness),
-              0.01 * s.length / (s.youngs_modulus * s.width * s.thickness));
+  for (const char* type : {"S8R", "S6"}) {
+    Strip s = cantilever_strip();
+    s.model.add_load(s.tip, Vec3(-1, 0, 0));  // 1 N compression: the factor is P_cr in N
+    CcxExportOptions o;
+    o.element_type = type;
+    o.buckle_case = 0;
+    o.buckling_factors = 2;
+    const CcxEnvelope env = run(s.model, "euler", o);
+    const double euler = M_PI * M_PI * s.bending_stiffness() / (4 * s.length * s.length);
+    ASSERT_FALSE(env.buckling_factors.empty()) << type;
+    std::printf("clamped-free strip: ccx %s buckling factor %.6g, Euler %.6g N (%+.3f %%)\n", type,
+                env.buckling_factors[0], euler, 100 * (env.buckling_factors[0] / euler - 1));
+    EXPECT_NEAR(env.buckling_factors[0], euler, 0.01 * euler) << type;
+    // The static step of the same deck: the end shortens by P L / (E A).
+    EXPECT_NEAR(env.cases[0].load_deflection, s.length / (s.youngs_modulus * s.width * s.thickness),
+                0.01 * s.length / (s.youngs_modulus * s.width * s.thickness))
+        << type;
+  }
 }
 
 // A 1 kg point mass on the tip of a 2.8 g strip: f = sqrt(k / m_eff) / (2 pi),
@@ -269,22 +274,24 @@ TEST(CcxEnvelope, ClampedFreeStripBucklesAtTheEulerLoadInCalculix) {
 // exact for nu = 0 and L/t = 100 (shear ~ (t/L)^2); 0.5 % covers the mesh
 // and ccx's C3D20R expansion.
 TEST(CcxEnvelope, TipMassOnAStripVibratesAtSqrtKOverMInCalculix) {
-  Strip s = cantilever_strip();
-  s.model.add_load(s.tip, Vec3(0, 0, -1));
-  s.model.point_masses = {PointMass{s.tip, 1.0, Vec3::Zero(), Eigen::Matrix3d::Zero()}};
-  CcxExportOptions o;
-  o.element_type = "S8R";
-  o.frequency_modes = 3;
-  const CcxEnvelope env = run(s.model, "tipmass", o);
-  const double k = 3 * s.bending_stiffness() / std::pow(s.length, 3);
-  const double f = std::sqrt(k / (1.0 + 33.0 / 140.0 * s.sheet_mass())) / (2 * M_PI);
-  ASSERT_GE(env.frequencies_hz.size(), 1u);
-  std::printf("tip mass: ccx S8R f1 %.6g Hz, sqrt(k/m)/(2 pi) %.6g Hz (%+.3f %%); "
-              "static tip %.6g mm, PL^3/3EI %.6g mm\n",
-              env.frequencies_hz[0], f, 100 * (env.frequencies_hz[0] / f - 1), env.cases[0].load_deflection * 1e3,
-              1e3 / k);
-  EXPECT_NEAR(env.frequencies_hz[0], f, 0.005 * f);
-  EXPECT_NEAR(env.cases[0].load_deflection, 1 / k, 0.005 / k);
+  for (const char* type : {"S8R", "S6"}) {
+    Strip s = cantilever_strip();
+    s.model.add_load(s.tip, Vec3(0, 0, -1));
+    s.model.point_masses = {PointMass{s.tip, 1.0, Vec3::Zero(), Eigen::Matrix3d::Zero()}};
+    CcxExportOptions o;
+    o.element_type = type;
+    o.frequency_modes = 3;
+    const CcxEnvelope env = run(s.model, "tipmass", o);
+    const double k = 3 * s.bending_stiffness() / std::pow(s.length, 3);
+    const double f = std::sqrt(k / (1.0 + 33.0 / 140.0 * s.sheet_mass())) / (2 * M_PI);
+    ASSERT_GE(env.frequencies_hz.size(), 1u) << type;
+    std::printf("tip mass: ccx %s f1 %.6g Hz, sqrt(k/m)/(2 pi) %.6g Hz (%+.3f %%); "
+                "static tip %.6g mm, PL^3/3EI %.6g mm\n",
+                type, env.frequencies_hz[0], f, 100 * (env.frequencies_hz[0] / f - 1),
+                env.cases[0].load_deflection * 1e3, 1e3 / k);
+    EXPECT_NEAR(env.frequencies_hz[0], f, 0.005 * f) << type;
+    EXPECT_NEAR(env.cases[0].load_deflection, 1 / k, 0.005 / k) << type;
+  }
 }
 
 // A box (1 kg, 80 x 30 x 70 mm, turned 30 deg about y) whose centre is e = 40
@@ -297,36 +304,38 @@ TEST(CcxEnvelope, TipMassOnAStripVibratesAtSqrtKOverMInCalculix) {
 // box's) moves f by < 0.1 %; 1 % covers that, the mesh and ccx. Without the
 // offset f is 70 % higher, without J_yy 5 % higher: both must reach ccx.
 TEST(CcxEnvelope, OffsetBoxWithRotaryInertiaVibratesAsTheTwoDofCantileverInCalculix) {
-  Strip s = cantilever_strip();
-  s.model.add_load(s.tip, Vec3(0, 0, -1));
-  const double m = 1.0, e = 0.04;
-  const Eigen::Matrix3d R = Eigen::AngleAxisd(M_PI / 6, Vec3::UnitY()).toRotationMatrix();
-  const Eigen::Matrix3d J = R * box_inertia(m, Vec3(0.08, 0.03, 0.07)) * R.transpose();
-  s.model.point_masses = {PointMass{s.tip, m, Vec3(e, 0, 0), J}};
-  CcxExportOptions o;
-  o.element_type = "S8R";
-  o.frequency_modes = 3;
-  const CcxEnvelope env = run(s.model, "offsetbox", o);
-  const double L = s.length, EI = s.bending_stiffness();
-  Eigen::Matrix2d flexibility;
-  flexibility << L * L * L / 3, L * L / 2, L * L / 2, L;
-  const Eigen::Matrix2d K = EI * flexibility.inverse();
-  auto first_frequency = [&K](double mass, double offset, double Jyy) {
-    Eigen::Matrix2d M;
-    M << mass, mass * offset, mass * offset, mass * offset * offset + Jyy;
-    const Eigen::Vector2d w2 = Eigen::GeneralizedSelfAdjointEigenSolver<Eigen::Matrix2d>(K, M).eigenvalues();
-    return std::sqrt(w2.minCoeff()) / (2 * M_PI);
-  };
-  const double f = first_frequency(m, e, J(1, 1));
-  const double f_tip = std::sqrt(3 * EI / (L * L * L) / m) / (2 * M_PI);
-  const double f_no_inertia = std::sqrt(EI / (L * L * L / 3 + e * L * L + e * e * L) / m) / (2 * M_PI);
-  ASSERT_GE(env.frequencies_hz.size(), 1u);
-  std::printf("offset box: ccx S8R f1 %.6g Hz, two-DOF closed form %.6g Hz (%+.3f %%); mass at the tip %.6g Hz, "
-              "at the centre without J %.6g Hz\n",
-              env.frequencies_hz[0], f, 100 * (env.frequencies_hz[0] / f - 1), f_tip, f_no_inertia);
-  EXPECT_NEAR(env.frequencies_hz[0], f, 0.01 * f);
-  EXPECT_GT(std::abs(f_tip / f - 1), 0.3);
-  EXPECT_GT(std::abs(f_no_inertia / f - 1), 0.03);
+  for (const char* type : {"S8R", "S6"}) {
+    Strip s = cantilever_strip();
+    s.model.add_load(s.tip, Vec3(0, 0, -1));
+    const double m = 1.0, e = 0.04;
+    const Eigen::Matrix3d R = Eigen::AngleAxisd(M_PI / 6, Vec3::UnitY()).toRotationMatrix();
+    const Eigen::Matrix3d J = R * box_inertia(m, Vec3(0.08, 0.03, 0.07)) * R.transpose();
+    s.model.point_masses = {PointMass{s.tip, m, Vec3(e, 0, 0), J}};
+    CcxExportOptions o;
+    o.element_type = type;
+    o.frequency_modes = 3;
+    const CcxEnvelope env = run(s.model, "offsetbox", o);
+    const double L = s.length, EI = s.bending_stiffness();
+    Eigen::Matrix2d flexibility;
+    flexibility << L * L * L / 3, L * L / 2, L * L / 2, L;
+    const Eigen::Matrix2d K = EI * flexibility.inverse();
+    auto first_frequency = [&K](double mass, double offset, double Jyy) {
+      Eigen::Matrix2d M;
+      M << mass, mass * offset, mass * offset, mass * offset * offset + Jyy;
+      const Eigen::Vector2d w2 = Eigen::GeneralizedSelfAdjointEigenSolver<Eigen::Matrix2d>(K, M).eigenvalues();
+      return std::sqrt(w2.minCoeff()) / (2 * M_PI);
+    };
+    const double f = first_frequency(m, e, J(1, 1));
+    const double f_tip = std::sqrt(3 * EI / (L * L * L) / m) / (2 * M_PI);
+    const double f_no_inertia = std::sqrt(EI / (L * L * L / 3 + e * L * L + e * e * L) / m) / (2 * M_PI);
+    ASSERT_GE(env.frequencies_hz.size(), 1u) << type;
+    std::printf("offset box: ccx %s f1 %.6g Hz, two-DOF closed form %.6g Hz (%+.3f %%); mass at the tip %.6g Hz, "
+                "at the centre without J %.6g Hz\n",
+                type, env.frequencies_hz[0], f, 100 * (env.frequencies_hz[0] / f - 1), f_tip, f_no_inertia);
+    EXPECT_NEAR(env.frequencies_hz[0], f, 0.01 * f) << type;
+    EXPECT_GT(std::abs(f_tip / f - 1), 0.3);
+    EXPECT_GT(std::abs(f_no_inertia / f - 1), 0.03);
+  }
 }
 
 // Two static cases in one deck (after a *BUCKLE and a *FREQUENCY step, with a
