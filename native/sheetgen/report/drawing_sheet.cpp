@@ -227,11 +227,31 @@ struct LabelBox {
     const double a = (x - cx) * ux() + (y - cy) * uy(), b = -(x - cx) * uy() + (y - cy) * ux();
     return std::abs(a) <= w / 2 + margin && std::abs(b) <= h / 2 + margin;
   }
+  // Whether the segment p -> q (page, mm) crosses the box grown by margin (Liang-Barsky clipping in the box's frame).
+  bool crossed_by(SheetPoint p, SheetPoint q, double margin) const {
+    const double pa = (p.x - cx) * ux() + (p.y - cy) * uy(), pb = -(p.x - cx) * uy() + (p.y - cy) * ux();
+    const double qa = (q.x - cx) * ux() + (q.y - cy) * uy(), qb = -(q.x - cx) * uy() + (q.y - cy) * ux();
+    double t0 = 0, t1 = 1;
+    const double d[2] = {qa - pa, qb - pb}, lo[2] = {-w / 2 - margin - pa, -h / 2 - margin - pb},
+                 hi[2] = {w / 2 + margin - pa, h / 2 + margin - pb};
+    for (int k = 0; k < 2; ++k) {
+      if (d[k] == 0) {
+        if (lo[k] > 0 || hi[k] < 0) return false;
+        continue;
+      }
+      double a = lo[k] / d[k], b = hi[k] / d[k];
+      if (a > b) std::swap(a, b);
+      t0 = std::max(t0, a);
+      t1 = std::min(t1, b);
+      if (t0 > t1) return false;
+    }
+    return true;
+  }
 };
 
 // How good a place the box is: its 27 sample points clear of the cut lines
-// and holes count for it, points on a label already placed or on a bend line
-// against it.
+// and holes count for it; points on a label already placed, and cut or bend
+// lines crossing it, against it.
 double label_score(const PageSheet& s, const LabelBox& box, const std::vector<LabelBox>& placed,
                    const std::vector<SheetBend>& bends, const FlatMap& m) {
   double score = 0;
@@ -240,9 +260,10 @@ double label_score(const PageSheet& s, const LabelBox& box, const std::vector<La
       const SheetPoint q = box.at((i / 8.0 - 0.5) * box.w, (j / 2.0 - 0.5) * box.h);
       score += s.free(q.x, q.y);
       for (const LabelBox& o : placed) score -= 20 * o.contains(q.x, q.y, 0.6);
-      for (const SheetBend& b : bends)
-        score -= 3 * (segment_distance(q.x, q.y, m.x(b.a.x), m.y(b.a.y), m.x(b.b.x), m.y(b.b.y)) < 0.8);
     }
+  for (const SheetBend& b : bends) score -= 6 * box.crossed_by({m.x(b.a.x), m.y(b.a.y)}, {m.x(b.b.x), m.y(b.b.y)}, 0.4);
+  for (size_t i = 0, j = s.outline.size() - 1; i < s.outline.size(); j = i++)
+    score -= 6 * box.crossed_by(s.outline[j], s.outline[i], 0.4);
   return score;
 }
 
@@ -472,7 +493,7 @@ SheetTable rivet_schedule(const DrawingSheetPart& p, double width) {
   SheetTable t;
   t.title = "RIVET SCHEDULE";
   const double f = width / 140;
-  t.widths = {18 * f, 32 * f, 16 * f, 32 * f, 12 * f, 30 * f};
+  t.widths = {15 * f, 38 * f, 16 * f, 31 * f, 12 * f, 28 * f};
   t.align = {0, 0, 1, 0, 1, 0};
   t.header = {"holes", "kind", "hole \u00D8", "rivet", "count", "set"};
   std::map<double, std::vector<const SheetHole*>> flange;  // by hole diameter
@@ -486,7 +507,7 @@ SheetTable rivet_schedule(const DrawingSheetPart& p, double width) {
   for (const SheetHole& h : p.holes) {  // one row per self-rivet, from its first hole
     if (!h.self_rivet || h.tab > h.other_tab) continue;
     t.rows.push_back({h.label, "self-rivet, tabs " + std::to_string(h.tab) + " + " + std::to_string(h.other_tab),
-                      mm(h.diameter, 3), rivet_size(p.rivet_diameter), "2 holes",
+                      mm(h.diameter, 3), rivet_size(p.rivet_diameter), "2",
                       h.after_bend > 0 ? "after B" + std::to_string(h.after_bend) : "before bending"});
   }
   if (t.rows.empty()) t.rows.push_back({"-", "no holes", "", "", "0", ""});
