@@ -20,6 +20,7 @@ import sys
 import tempfile
 import threading
 import time
+import types
 
 import bpy
 from bpy.props import StringProperty
@@ -62,6 +63,8 @@ class Run:
         self.thread = None
         self.started = None
         self.cancel_requested = False
+        self.shown = None   # (percent, text): what the modal last put in the progress and status bars
+        self.ended = None   # time.monotonic() when the native call returned
 
     def start(self):
         global _active
@@ -78,6 +81,8 @@ class Run:
             self.result = self.sg.generate(self.problem, self.progress)
         except Exception as e:  # noqa: BLE001 - reported on the main thread
             self.error = e
+        finally:
+            self.ended = time.monotonic()
 
     def alive(self):
         return self.thread is not None and self.thread.is_alive()
@@ -101,20 +106,35 @@ class Run:
         if _active is self:
             _active = None
 
-    def fraction(self):
+    def snapshot(self):
+        """The progress counters read once (the worker moves them between reads): one snapshot gives the bar's
+        percentage and the status line the same iteration."""
         p = self.progress
+        names = ("stage", "load", "loads", "iterations", "total_iterations", "evaluated", "best_cost_m2")
+        return types.SimpleNamespace(**{n: getattr(p, n) for n in names})
+
+    def fraction(self, snap=None):
+        p = snap or self.snapshot()
         if p.stage == "done":
             return 1.0
         loads = max(p.loads, 1)
         inner = p.iterations / p.total_iterations if p.total_iterations else 0.0
         return min((p.load + min(inner, 1.0)) / loads, 1.0)
 
-    def text(self):
-        p = self.progress
+    def percent(self, snap=None):
+        """The progress bar's whole percent (1e-9: 100 * 0.29 is 28.999… in floating point)."""
+        return int(100 * self.fraction(snap) + 1e-9)
+
+    def text(self, snap=None):
+        p = snap or self.snapshot()
         best = ("best %.1f cm²" % (p.best_cost_m2 * 1e4)) if p.best_cost_m2 > 0 else "no part yet"
-        return ("sheetgen: load %d/%d, %s, iteration %d/%d, %s, %.0f s — Esc cancels"
-                % (min(p.load + 1, max(p.loads, 1)), max(p.loads, 1), p.stage, p.iterations, p.total_iterations,
-                   best, time.monotonic() - self.started))
+        if p.stage == "composition":   # discovery's iterations are all done: count the candidates instead
+            work = "%d candidates evaluated" % p.evaluated
+        else:
+            work = "iteration %d/%d" % (p.iterations, p.total_iterations)
+        return ("sheetgen: load %d/%d, %s, %s, %s, %.0f s — Esc cancels"
+                % (min(p.load + 1, max(p.loads, 1)), max(p.loads, 1), p.stage, work, best,
+                   time.monotonic() - self.started))
 
     def outputs(self):
         """(result document, {relative path: text}) of a finished run: write_outputs into a temporary
@@ -173,6 +193,15 @@ def run_sync(context, op=None, log=None, log_every=2.0):
     return col, doc, run
 
 
+def _redraw_sidebars(context):
+    """Redraw the 3D views' sidebars (the main panel shows the run's progress), not the views themselves."""
+    for area in context.screen.areas if context.screen is not None else ():
+        if area.type == 'VIEW_3D':
+            for region in area.regions:
+                if region.type == 'UI':
+                    region.tag_redraw()
+
+
 class SHEETGEN_OT_generate(bpy.types.Operator):
     """Design a bracket for every load of the scene (runs in the background; Esc cancels)"""
     bl_idname = "sheetgen.generate"
@@ -222,7 +251,7 @@ class SHEETGEN_OT_generate(bpy.types.Operator):
         self._cancelled = False
         wm = context.window_manager
         wm.progress_begin(0, 100)
-        self._timer = wm.event_timer_add(0.2, window=context.window)
+        self._timer = wm.event_timer_add(0.1, window=context.window)   # the bars move 10 times a second
         wm.modal_handler_add(self)
         context.workspace.status_text_set(self._run.text())
         return {'RUNNING_MODAL'}
@@ -233,6 +262,7 @@ class SHEETGEN_OT_generate(bpy.types.Operator):
         wm.progress_end()
         context.workspace.status_text_set(None)
         self._run.done()
+        _redraw_sidebars(context)   # the Generate button again in place of the progress box
 
     def modal(self, context, event):
         run = self._run
@@ -240,13 +270,20 @@ class SHEETGEN_OT_generate(bpy.types.Operator):
             self._cancelled = True
             run.cancel()
             context.workspace.status_text_set("sheetgen: cancelling…")
+            # Look for the worker's end every 50 ms from now on: the search stops within a second.
+            wm = context.window_manager
+            wm.event_timer_remove(self._timer)
+            self._timer = wm.event_timer_add(0.05, window=context.window)
             return {'RUNNING_MODAL'}
         if event.type != 'TIMER':
             return {'PASS_THROUGH'}   # the UI stays usable while the search runs
         if run.alive():
             if not self._cancelled:
-                context.window_manager.progress_update(int(100 * run.fraction()))
-                context.workspace.status_text_set(run.text())
+                snap = run.snapshot()
+                run.shown = (run.percent(snap), run.text(snap))
+                context.window_manager.progress_update(run.shown[0])
+                context.workspace.status_text_set(run.shown[1])
+                _redraw_sidebars(context)
             return {'RUNNING_MODAL'}
         self._end(context)
         if run.error is not None:
@@ -297,6 +334,63 @@ class SHEETGEN_OT_export_results(bpy.types.Operator):
             return {'CANCELLED'}
         self.report({'INFO'}, "Wrote %d files into %s" % (len(files), folder))
         return {'FINISHED'}
+
+
+class _PartExport:
+    """Export STEP / Export Drawing: one load's file of the run (core/part_export.py) to a file the user names."""
+    load: StringProperty(name="Load", description="The load whose part is exported")
+    filepath: StringProperty(subtype='FILE_PATH')
+
+    @classmethod
+    def poll(cls, context):
+        return results.run_document(context.scene.sheetgen.result_collection) is not None
+
+    def kind(self):
+        raise NotImplementedError
+
+    def invoke(self, context, event):
+        from .core import part_export
+        if not self.filepath:
+            self.filepath = os.path.join(bpy.path.abspath("//") or os.getcwd(),
+                                         part_export.default_name(self.load, self.kind()))
+        context.window_manager.fileselect_add(self)
+        return {'RUNNING_MODAL'}
+
+    def execute(self, context):
+        from .core import part_export
+        col = context.scene.sheetgen.result_collection
+        try:
+            path = part_export.export(results.run_files(col), results.run_document(col), self.load, self.kind(),
+                                      bpy.path.abspath(self.filepath))
+        except part_export.ExportError as e:
+            self.report({'ERROR'}, str(e))
+            return {'CANCELLED'}
+        self.report({'INFO'}, "Wrote %s" % path)
+        return {'FINISHED'}
+
+
+class SHEETGEN_OT_export_step(_PartExport, bpy.types.Operator):
+    """Write a load's part as STEP (AP214, mm): the bent solid with true bend radii, or its flat pattern as a solid"""
+    bl_idname = "sheetgen.export_step"
+    bl_label = "Export STEP"
+
+    flat: bpy.props.BoolProperty(name="Flat Pattern", default=False,
+                                 description="The flat pattern as a solid of the sheet's thickness instead of the bent part")
+    filter_glob: StringProperty(default="*.step;*.stp", options={'HIDDEN'})
+
+    def kind(self):
+        return "FLAT_STEP" if self.flat else "PART_STEP"
+
+
+class SHEETGEN_OT_export_drawing(_PartExport, bpy.types.Operator):
+    """Write a load's drawing sheet (one-page PDF: flat pattern with dimensions, bend table, rivets, checks)"""
+    bl_idname = "sheetgen.export_drawing"
+    bl_label = "Export Drawing"
+
+    filter_glob: StringProperty(default="*.pdf", options={'HIDDEN'})
+
+    def kind(self):
+        return "DRAWING"
 
 
 class SHEETGEN_OT_render(bpy.types.Operator):
@@ -361,7 +455,8 @@ class SHEETGEN_OT_show_modes(bpy.types.Operator):
         return {'FINISHED'}
 
 
-CLASSES = (SHEETGEN_OT_generate, SHEETGEN_OT_export_results, SHEETGEN_OT_render, SHEETGEN_OT_show_modes)
+CLASSES = (SHEETGEN_OT_generate, SHEETGEN_OT_export_results, SHEETGEN_OT_export_step, SHEETGEN_OT_export_drawing,
+           SHEETGEN_OT_render, SHEETGEN_OT_show_modes)
 
 
 def register():

@@ -86,8 +86,10 @@ class SHEETGEN_PT_main(_Panel, bpy.types.Panel):
         from . import generate
         run = generate.active_run()
         if run is not None and run.alive():
-            box = layout.box()
-            box.label(text=run.text(), icon='TIME')
+            box = layout.box()   # the sidebar is narrow: the full line is in the status bar
+            snap = run.snapshot()
+            box.label(text="%s, %d %%" % (snap.stage, run.percent(snap)), icon='TIME')
+            box.label(text="Esc cancels")
         else:
             layout.operator("sheetgen.generate", icon='MOD_SOLIDIFY')
 
@@ -321,6 +323,11 @@ class SHEETGEN_PT_results(_Panel, bpy.types.Panel):
                     row.label(text=label)
                     row.label(text=text)
                 box.operator("sheetgen.show_modes", icon='SHAPEKEY_DATA').load = part.get("load", "")
+            row = box.row(align=True)   # this part's files for CAD and the shop (core/part_export.py)
+            row.operator("sheetgen.export_step", icon='EXPORT', text="STEP").load = part.get("load", "")
+            op = row.operator("sheetgen.export_step", text="Flat STEP")
+            op.load, op.flat = part.get("load", ""), True
+            row.operator("sheetgen.export_drawing", icon='FILE', text="Drawing").load = part.get("load", "")
         row = layout.row(align=True)
         row.operator("sheetgen.export_results", icon='EXPORT', text="Export")
         row.operator("sheetgen.generate", icon='FILE_REFRESH', text="Re-run")

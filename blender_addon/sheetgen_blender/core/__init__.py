@@ -14,5 +14,7 @@ Blender by ``tests/python/test_addon_core_*.py``:
   flat pattern split at its bend lines, rivet markers) and report numbers;
 - ``flatplot``: the flat pattern as a PNG (matplotlib, imported lazily);
 - ``modes``: a part's buckling and vibration modes (from the native
-  ``part_modes``) as a mesh with shape-key positions.
+  ``part_modes``) as a mesh with shape-key positions;
+- ``part_export``: Export STEP / Export Drawing, one of a run's files of a
+  load written to a path the user names (checked, atomic, one-sentence errors).
 """
