@@ -5,10 +5,13 @@
 #include <BRepAdaptor_Curve.hxx>
 #include <BRepAdaptor_Surface.hxx>
 #include <BRepAlgoAPI_Cut.hxx>
+#include <BRepAlgoAPI_Fuse.hxx>
 #include <BRepBndLib.hxx>
+#include <BRepBuilderAPI_Copy.hxx>
 #include <BRepBuilderAPI_MakeEdge.hxx>
 #include <BRepBuilderAPI_MakeFace.hxx>
 #include <BRepBuilderAPI_MakePolygon.hxx>
+#include <BRepBuilderAPI_MakeSolid.hxx>
 #include <BRepBuilderAPI_MakeVertex.hxx>
 #include <BRepBuilderAPI_MakeWire.hxx>
 #include <BRepBuilderAPI_Sewing.hxx>
@@ -19,7 +22,6 @@
 #include <BRepMesh_IncrementalMesh.hxx>
 #include <BRepOffsetAPI_MakeOffsetShape.hxx>
 #include <BRepOffsetAPI_MakeThickSolid.hxx>
-#include <BRepPrimAPI_MakeCylinder.hxx>
 #include <BRepPrimAPI_MakePrism.hxx>
 #include <BRepTools.hxx>
 #include <BRepTools_WireExplorer.hxx>
@@ -56,6 +58,7 @@
 #include <functional>
 #include <limits>
 #include <mutex>
+#include <map>
 #include <stdexcept>
 #include <unistd.h>
 
@@ -225,11 +228,54 @@ TopoDS_Face wrap_bend_zone(const TopoDS_Face& zone, const FlatBend& b, const Fla
   return fix.Face();
 }
 
+// The self-rivets' sheets, grouped: tabs joined by self-rivets (directly or
+// through another gusset) get the same group number; other tabs -1.
+std::vector<int> self_rivet_groups(const FlatPattern& flat, const std::vector<RivetHole>& holes) {
+  std::vector<int> root(flat.pieces.size());
+  for (size_t i = 0; i < root.size(); ++i) root[i] = static_cast<int>(i);
+  auto find = [&](int i) {
+    while (root[i] != i) i = root[i] = root[root[i]];
+    return i;
+  };
+  std::vector<bool> joined(root.size(), false);
+  for (const RivetHole& h : holes) {
+    if (h.kind != RivetKind::Self) continue;
+    if (h.tab < 0 || h.other_tab < 0 || h.tab >= static_cast<int>(root.size()) || h.other_tab >= static_cast<int>(root.size()))
+      throw std::invalid_argument("self-rivet hole " + hole_label(h) + " names a tab the part does not have");
+    root[find(h.tab)] = find(h.other_tab);
+    joined[h.tab] = joined[h.other_tab] = true;
+  }
+  std::vector<int> group(root.size(), -1);
+  for (size_t i = 0; i < root.size(); ++i)
+    if (joined[i]) group[i] = find(static_cast<int>(i));
+  return group;
+}
+
+// One face of the flat sheets of a self-rivet group: sheetgen bends both
+// gussets of a self-rivet into one common plane (docs/pipeline.md), so they
+// overlap there; as two faces the solid would overlap itself, which no CAD
+// system accepts. Their union is one plate, the riveted joint as one piece of metal.
+std::vector<TopoDS_Face> joined_sheets(const std::vector<TopoDS_Face>& faces) {
+  TopTools_ListOfShape args, tools;
+  args.Append(faces.front());
+  for (size_t i = 1; i < faces.size(); ++i) tools.Append(faces[i]);
+  BRepAlgoAPI_Fuse fuse;
+  fuse.SetArguments(args);
+  fuse.SetTools(tools);
+  fuse.SetFuzzyValue(1e-4);  // mm: the common plane is computed twice, once per gusset
+  fuse.Build();
+  if (!fuse.IsDone() || fuse.HasErrors()) throw std::runtime_error("joining the sheets of a self-rivet failed");
+  ShapeUpgrade_UnifySameDomain unify(fuse.Shape(), true, true, false);
+  unify.Build();
+  return faces_of(unify.Shape());
+}
+
 // The part's mid-surface (mm, world) as one shell: the sheet outside the bend
-// zones moved rigidly piece by piece, every bend zone wrapped onto its
-// cylinder, sewn along the tangent lines (where the faces meet tangentially).
-TopoDS_Shell mid_surface(const FlatPattern& flat, const StepExportOptions& o) {
-  const TopoDS_Face sheet = flat_face(flat, {}, Vec2::Zero());
+// zones moved rigidly piece by piece (the sheets of each self-rivet joined),
+// every bend zone wrapped onto its cylinder, sewn along the tangent lines
+// (where the faces meet tangentially).
+TopoDS_Shell mid_surface(const FlatPattern& flat, const std::vector<RivetHole>& holes, const StepExportOptions& o) {
+  const TopoDS_Face sheet = flat_face(flat, holes, Vec2::Zero());
   const std::vector<FlatPieceTransform> maps = fold_transforms(flat);
   BRepBuilderAPI_Sewing sew(o.sewing_tolerance * kMm);
   TopTools_ListOfShape zones;
@@ -251,11 +297,19 @@ TopoDS_Shell mid_surface(const FlatPattern& flat, const StepExportOptions& o) {
     if (!cut.IsDone() || cut.HasErrors()) throw std::runtime_error("cutting the bend zones out of the flat sheet failed");
     planar = cut.Shape();
   }
+  const std::vector<int> group = self_rivet_groups(flat, holes);
+  std::map<int, std::vector<TopoDS_Face>> grouped;
   for (const TopoDS_Face& f : faces_of(planar)) {
     const int tab = piece_at(flat, interior_point(f));
     if (tab < 0) throw std::runtime_error("a flat region belongs to no tab");
-    sew.Add(BRepBuilderAPI_Transform(f, to_gp(maps[tab]), true).Shape());
+    const TopoDS_Face placed = TopoDS::Face(BRepBuilderAPI_Transform(f, to_gp(maps[tab]), true).Shape());
+    if (group[tab] >= 0)
+      grouped[group[tab]].push_back(placed);
+    else
+      sew.Add(placed);
   }
+  for (const auto& g : grouped)
+    for (const TopoDS_Face& f : joined_sheets(g.second)) sew.Add(f);
   sew.Perform();
   std::vector<TopoDS_Shell> shells;
   for (TopExp_Explorer x(sew.SewedShape(), TopAbs_SHELL); x.More(); x.Next()) shells.push_back(TopoDS::Shell(x.Current()));
@@ -268,16 +322,19 @@ TopoDS_Shell mid_surface(const FlatPattern& flat, const StepExportOptions& o) {
 // fits: the faces meet tangentially (planes and cylinders, G1 across every
 // tangent line), so every face offsets to a face of the same kind and the
 // walls along the cut edges are ruled between the two offset edges.
-TopoDS_Solid thicken(const TopoDS_Shell& mid, double t_mm) {
+TopoDS_Solid thicken(const TopoDS_Shape& mid, double t_mm) {
   BRepOffsetAPI_MakeOffsetShape bottom;
   bottom.PerformBySimple(mid, -0.5 * t_mm);
   if (!bottom.IsDone()) throw std::runtime_error("offsetting the bent sheet by -t/2 failed");
   BRepOffsetAPI_MakeThickSolid thick;
   thick.MakeThickSolidBySimple(bottom.Shape(), t_mm);
   if (!thick.IsDone()) throw std::runtime_error("thickening the bent sheet failed");
-  for (TopExp_Explorer x(thick.Shape(), TopAbs_SOLID); x.More(); x.Next()) {
-    TopoDS_Solid solid = TopoDS::Solid(x.Current());
-    // The offset keeps the shell's orientation, which sewing chose freely: turn the solid outside out.
+  for (TopExp_Explorer x(thick.Shape(), TopAbs_SHELL); x.More(); x.Next()) {
+    // A fresh solid on the offset's closed shell: the offset keeps the shell's
+    // orientation, which sewing chose freely, so the solid is turned outside out.
+    TopoDS_Shell shell = TopoDS::Shell(x.Current());
+    shell.Closed(BRep_Tool::IsClosed(shell));  // the offset leaves the flag unset; booleans read it
+    TopoDS_Solid solid = BRepBuilderAPI_MakeSolid(shell).Solid();
     if (!BRepLib::OrientClosedSolid(solid)) throw std::runtime_error("the thickened sheet is not a closed solid");
     return solid;
   }
@@ -312,43 +369,18 @@ double inside_radius_mm(const FlatPattern& flat) {
   return flat.bends.empty() ? -1 : flat.bends.front().inside_radius * kMm;
 }
 
-// The holes drilled square through their sheets after thickening, so a hole's
-// wall is a true cylinder (a CAD system recognises it as a hole) rather than
-// the ruled face the offset makes. Each drill spans exactly its sheet's
-// thickness, so it cannot touch the other sheet of a self-rivet pair.
-TopoDS_Shape drill_holes(const TopoDS_Solid& solid, const FlatPattern& flat, const std::vector<RivetHole>& holes,
-                         double t) {
-  if (holes.empty()) return solid;
-  const std::vector<FlatPieceTransform> maps = fold_transforms(flat);
-  TopTools_ListOfShape drills;
-  for (const RivetHole& h : holes) {
-    if (h.tab < 0 || h.tab >= static_cast<int>(maps.size()))
-      throw std::invalid_argument("rivet hole " + hole_label(h) + " names tab " + std::to_string(h.tab));
-    const Vec3 n = maps[h.tab].rotation.col(2);
-    const Vec3 bottom = maps[h.tab].apply(h.flat) - 0.5 * t * n;
-    drills.Append(BRepPrimAPI_MakeCylinder(gp_Ax2(mm(bottom), dir(n)), 0.5 * h.diameter * kMm, t * kMm).Shape());
-  }
-  TopTools_ListOfShape args;
-  args.Append(solid);
-  BRepAlgoAPI_Cut cut;
-  cut.SetArguments(args);
-  cut.SetTools(drills);
-  cut.SetFuzzyValue(1e-5);  // mm: the drills' caps lie on the sheet's faces
-  cut.Build();
-  if (!cut.IsDone() || cut.HasErrors()) throw std::runtime_error("drilling the rivet holes failed");
-  std::vector<TopoDS_Shape> solids;  // the cut returns a compound; the file gets the solid itself
-  for (TopExp_Explorer x(cut.Shape(), TopAbs_SOLID); x.More(); x.Next()) solids.push_back(x.Current());
-  return solids.size() == 1 ? solids[0] : cut.Shape();
-}
-
 TopoDS_Shape bent_solid(const FlatPattern& flat, const std::vector<RivetHole>& holes, const StepExportOptions& o) {
   if (!flat.ok()) throw std::invalid_argument("the flat pattern is not valid: " + flat.message);
   if (!(o.thickness > 0)) throw std::invalid_argument("StepExportOptions::thickness must be > 0 m");
-  const TopoDS_Solid sheet = thicken(mid_surface(flat, o), o.thickness * kMm);
+  // The holes are cut in the flat sheet, not drilled into the solid afterwards:
+  // no boolean on the solid is needed.
+  const TopoDS_Shape sheet = thicken(mid_surface(flat, holes, o), o.thickness * kMm);
   // One face per surface: each bend zone was wrapped as two pieces (parent's and tab's side).
-  ShapeUpgrade_UnifySameDomain unify(drill_holes(sheet, flat, holes, o.thickness), true, true, false);
+  ShapeUpgrade_UnifySameDomain unify(sheet, true, true, false);
   unify.Build();
-  return unify.Shape();
+  std::vector<TopoDS_Shape> solids;  // a boolean returns a compound; the file gets the solid itself
+  for (TopExp_Explorer x(unify.Shape(), TopAbs_SOLID); x.More(); x.Next()) solids.push_back(x.Current());
+  return solids.size() == 1 ? solids[0] : unify.Shape();
 }
 
 TopoDS_Solid flat_solid(const FlatPattern& flat, const std::vector<RivetHole>& holes, const StepExportOptions& o) {
@@ -422,7 +454,7 @@ StepSolidReport write_part_step(const std::string& path, const FlatPattern& flat
   return guarded(path.c_str(), [&] {
     const TopoDS_Shape solid = bent_solid(flat, holes, options);
     StepSolidReport r = measure(solid, inside_radius_mm(flat), options.thickness * kMm);
-    if (r.solids != 1 || !r.valid) throw std::runtime_error("cannot write " + path + ": the bent solid is not valid");
+    if (r.solids != 1 || !r.valid) { throw std::runtime_error("cannot write " + path + ": the bent solid is not valid (" + std::to_string(r.solids) + " solids, valid " + std::to_string(r.valid) + ")"); }
     write_step(path, solid, options);
     return r;
   });
