@@ -37,6 +37,11 @@ def active_run():
     return _active
 
 
+def problem_label(context):
+    """The name the native parser gives the scene's problem (its messages, the drawing sheet's title block)."""
+    return "scene '%s'" % context.scene.name
+
+
 class GenerateError(Exception):
     """One sentence for self.report."""
 
@@ -54,7 +59,7 @@ class Run:
         self.thickness = self.problem_dict["material"]["thickness"]
         base = bpy.path.abspath("//") or os.getcwd()
         try:
-            self.problem = sg.parse_problem(self.problem_text, "scene '%s'" % context.scene.name, base)
+            self.problem = sg.parse_problem(self.problem_text, problem_label(context), base)
         except ValueError as e:   # sg.InputError: one sentence naming the field
             raise GenerateError(str(e)) from None
         self.progress = sg.GenerateProgress()
@@ -336,6 +341,19 @@ class SHEETGEN_OT_export_results(bpy.types.Operator):
         return {'FINISHED'}
 
 
+def _native_maker(files, label):
+    """For a run that does not hold drawing.pdf: the native ``write_drawing`` on the run's own problem.json
+    and result.json (the same writer write_outputs uses; atomic, errors one sentence). ``label`` names the
+    problem as Generate did (the title block shows it), so an unrenamed scene gets the same bytes."""
+    def make(kind, load, path):
+        sg = native.get()
+        if kind != "DRAWING" or sg is None or not hasattr(sg, "write_drawing") or "problem.json" not in files:
+            raise NotImplementedError(kind)
+        problem = sg.parse_problem(files["problem.json"], label, bpy.path.abspath("//") or os.getcwd())
+        sg.write_drawing(problem, files["result.json"], load, path)
+    return make
+
+
 class _PartExport:
     """Export STEP / Export Drawing: one load's file of the run (core/part_export.py) to a file the user names."""
     load: StringProperty(name="Load", description="The load whose part is exported")
@@ -359,9 +377,11 @@ class _PartExport:
     def execute(self, context):
         from .core import part_export
         col = context.scene.sheetgen.result_collection
+        files = results.run_files(col)
         try:
-            path = part_export.export(results.run_files(col), results.run_document(col), self.load, self.kind(),
-                                      bpy.path.abspath(self.filepath))
+            path = part_export.export(files, results.run_document(col), self.load, self.kind(),
+                                      bpy.path.abspath(self.filepath),
+                                      make=_native_maker(files, problem_label(context)))
         except part_export.ExportError as e:
             self.report({'ERROR'}, str(e))
             return {'CANCELLED'}

@@ -151,6 +151,49 @@ class GenerateCorner(unittest.TestCase):
         self.assertEqual(v["time_s"], p["timing"]["total_s"])
         self.assertEqual(p["bends"], len(p["flat_pattern"]["bends"]))
 
+    def test_export_step_and_drawing_of_the_run(self):
+        from sheetgen_blender.core import jsonio
+        # Export Drawing and Export STEP (Results panel) write the run's own files; a run without drawing.pdf
+        # (made before sheetgen wrote one) gets it from the native write_drawing on its problem.json and
+        # result.json: the same bytes (the sheet has no creation date, docs/drawing.md).
+        from sheetgen_blender import results
+        files = results.run_files(self.col)
+        scene = bpy.context.scene
+        with tempfile.TemporaryDirectory() as tmp:
+            self.assertEqual(bpy.ops.sheetgen.export_drawing(load="avionics_box", filepath=os.path.join(tmp, "sheet")),
+                             {'FINISHED'})
+            with open(os.path.join(tmp, "sheet.pdf"), "rb") as f:
+                pdf = f.read()
+            self.assertTrue(pdf.startswith(b"%PDF-"))
+            old = bpy.data.collections.new("sheetgen old run")
+            old[results.KEY_RESULT] = self.col[results.KEY_RESULT]
+            old[results.KEY_FILES] = {k: v for k, v in files.items() if not k.endswith("drawing.pdf")}
+            scene.sheetgen.result_collection = old
+            try:
+                self.assertEqual(bpy.ops.sheetgen.export_drawing(load="avionics_box",
+                                                                 filepath=os.path.join(tmp, "again.pdf")), {'FINISHED'})
+            finally:
+                scene.sheetgen.result_collection = self.col
+                bpy.data.collections.remove(old)
+            with open(os.path.join(tmp, "again.pdf"), "rb") as f:
+                self.assertEqual(f.read(), pdf)
+            if "avionics_box/drawing.pdf" in files:
+                self.assertEqual(pdf, jsonio.text_to_file(files["avionics_box/drawing.pdf"]))
+            for flat, name in ((False, "part.step"), (True, "flat.step")):
+                target = os.path.join(tmp, "out_" + name)
+                if "avionics_box/" + name in files:
+                    self.assertEqual(bpy.ops.sheetgen.export_step(load="avionics_box", flat=flat, filepath=target),
+                                     {'FINISHED'})
+                    with open(target) as f:
+                        text = f.read()
+                    self.assertEqual(text, files["avionics_box/" + name])
+                    self.assertTrue(text.startswith("ISO-10303-21;"))
+                else:    # a native module without the STEP writer: one sentence, nothing written
+                    with self.assertRaises(RuntimeError) as ctx:
+                        bpy.ops.sheetgen.export_step(load="avionics_box", flat=flat, filepath=target)
+                    self.assertIn("Re-run to make it", str(ctx.exception))
+                    self.assertFalse(os.path.exists(target))
+
     def test_generated_objects_are_not_environment(self):
         after = [m["name"] for m in self._problem()["environment"]["meshes"]]
         self.assertEqual(after, self.env_before)

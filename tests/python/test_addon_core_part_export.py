@@ -107,5 +107,46 @@ class Errors(unittest.TestCase):
                    "sheetgen wrote one; Re-run to make it", "TMP/p.step", kind="FLAT_STEP", files=old)
 
 
+class Make(unittest.TestCase):
+    """``make``: the writer the add-on passes for a run without the file (the native write_drawing)."""
+
+    def old_run(self):
+        return {k: v for k, v in run_files().items() if k.endswith(".json")}
+
+    def test_used_only_when_the_run_lacks_the_file(self):
+        calls = []
+
+        def make(kind, load, path):
+            calls.append((kind, load, os.path.basename(path)))
+            with open(path, "wb") as f:
+                f.write(b"%PDF-made")
+        with tempfile.TemporaryDirectory() as d:
+            E.export(run_files(), DOC, "radio box", "DRAWING", os.path.join(d, "a.pdf"), make=make)
+            self.assertEqual(calls, [])                        # the run's own file first
+            path = E.export(self.old_run(), DOC, "radio box", "DRAWING", os.path.join(d, "b"), make=make)
+            self.assertEqual(calls, [("DRAWING", "radio box", "b.pdf")])
+            with open(path, "rb") as f:
+                self.assertEqual(f.read(), b"%PDF-made")
+            with self.assertRaises(E.ExportError):             # no valid part: make is not asked
+                E.export(self.old_run(), DOC, "psu", "DRAWING", os.path.join(d, "c.pdf"), make=make)
+            self.assertEqual(len(calls), 1)
+
+    def test_its_errors_are_one_sentence(self):
+        def cannot(kind, load, path):
+            raise NotImplementedError(kind)
+
+        def fails(kind, load, path):
+            raise RuntimeError("cannot write %s: No space left on device\n(detail)" % path)
+        with tempfile.TemporaryDirectory() as d:
+            with self.assertRaises(E.ExportError) as ctx:
+                E.export(self.old_run(), DOC, "radio box", "PART_STEP", os.path.join(d, "p.step"), make=cannot)
+            self.assertEqual(str(ctx.exception), "this run has no bent part STEP for 'radio box' "
+                             "(radio box/part.step): it was made before sheetgen wrote one; Re-run to make it")
+            with self.assertRaises(E.ExportError) as ctx:
+                E.export(self.old_run(), DOC, "radio box", "DRAWING", os.path.join(d, "p.pdf"), make=fails)
+            self.assertEqual(str(ctx.exception), "cannot write %s: No space left on device" % os.path.join(d, "p.pdf"))
+            self.assertEqual(os.listdir(d), [])
+
+
 if __name__ == "__main__":
     unittest.main()

@@ -5,7 +5,9 @@ A run's files (the native ``write_outputs`` folder, stored on the run collection
 with a valid part, ``<load>/part.step``, ``<load>/flat.step`` and ``<load>/drawing.pdf``. ``export``
 writes one of them to a file the user names: the path is checked first, the bytes are written
 through a temporary file in the target folder and a rename, so a failure leaves nothing behind,
-and every failure is one sentence (``ExportError``).
+and every failure is one sentence (``ExportError``). A run made before sheetgen wrote these files
+can still give its drawing sheet: the operator passes ``make``, the native ``write_drawing`` on the
+run's problem.json and result.json.
 """
 import os
 
@@ -58,18 +60,45 @@ def stored_file(files, doc, load, kind):
         raise ExportError("load '%s' has no valid part in this run, so no %s" % (load, what))
     rel = load + "/" + name
     if rel not in files:
-        raise ExportError("this run has no %s for '%s' (%s): it was made before sheetgen wrote one; Re-run "
-                          "to make it" % (what, load, rel))
+        raise ExportError(_missing(load, kind))
     return jsonio.text_to_file(files[rel])
 
 
-def export(files, doc, load, kind, path):
+def _missing(load, kind):
+    name, _extensions, what = KINDS[kind]
+    return ("this run has no %s for '%s' (%s/%s): it was made before sheetgen wrote one; Re-run to make it"
+            % (what, load, load, name))
+
+
+def export(files, doc, load, kind, path, make=None):
     """Write the run's ``kind`` file of ``load`` to ``path`` (extension added when missing); returns the path
-    written. Raises ExportError (one sentence) and leaves no file behind on any failure."""
+    written. Raises ExportError (one sentence) and leaves no file behind on any failure.
+
+    ``make(kind, load, path)``, when given, writes the file itself for a run that does not hold it (a run made
+    before sheetgen wrote that file: the add-on passes the native drawing writer); it must write atomically
+    and raise ValueError or RuntimeError with one sentence, or NotImplementedError when it cannot make that kind.
+    """
     path = target_path(path, kind)
-    data = stored_file(files, doc, load, kind)
+    try:
+        data = stored_file(files, doc, load, kind)
+    except ExportError:
+        name = KINDS[kind][0]
+        if make is None or load + "/" + name in files or not _has_valid_part(doc, load):
+            raise
+        try:
+            make(kind, load, path)
+        except NotImplementedError:
+            raise ExportError(_missing(load, kind)) from None
+        except (ValueError, RuntimeError, OSError) as e:
+            raise ExportError(str(e).strip().splitlines()[0] if str(e).strip() else
+                              "cannot write %s" % path) from None
+        return path
     try:
         jsonio.write_atomic(path, data)
     except OSError as e:
         raise ExportError("cannot write %s: %s" % (path, e.strerror or e)) from None
     return path
+
+
+def _has_valid_part(doc, load):
+    return any(p.get("load") == load and p.get("status") == "ok" for p in (doc or {}).get("parts", []))
