@@ -6,6 +6,7 @@
 #include <unistd.h>
 
 #include "sheetgen/part/exports.hpp"
+#include "sheetgen/pipeline/part_drawing.hpp"
 #include "sheetgen/pipeline/result_json.hpp"
 #include "sheetgen/report/convergence_plot.hpp"
 
@@ -43,6 +44,7 @@ void write_convergence_plot(const std::string& path, const Problem& problem, con
 void write_load_folder(const fs::path& folder, const Problem& problem, const LoadOutcome& o) {
   fs::create_directories(folder);
   if (o.ok) write_manufacturing_files(folder.u8string(), o.realised, o.plan);
+  if (o.ok) write_part_drawing(load_result_json(problem, o), problem, (folder / "drawing.pdf").u8string());
   write_text_file((folder / "history.csv").u8string(), history_csv(o));
   write_convergence_plot((folder / "convergence.png").u8string(), problem, o);
 }

@@ -1,7 +1,7 @@
 #pragma once
 // The files of a run (docs/pipeline.md "`sheetgen solve`"): DIR/result.json and
 // per load DIR/<load>/{part.obj, flat.dxf, flat.svg, bends.csv, rivets.csv,
-// history.csv, convergence.png}.
+// history.csv, convergence.png, drawing.pdf (docs/drawing.md)}.
 #include <string>
 
 #include "sheetgen/core/problem.hpp"
