@@ -246,7 +246,7 @@ CcxEnvelope run(const ShellModel& m, const std::string& name, const CcxExportOpt
 // along L resolve the quarter-wave mode far below 0.1 %. 1 % covers ccx's
 // expansion of S8R into one layer of C3D20R (S6: C3D15) through the thickness.
 // Both deck elements: S6 is the compliance reference on real parts
-// (docs/fem.md "Which CalculiX element"), S8R the element of the other tests.
+// (docs/fem.md "Which CalculiX reference"), S8R the element of the other tests.
 TEST(CcxEnvelope, ClampedFreeStripBucklesAtTheEulerLoadInCalculix) {
   for (const char* type : {"S8R", "S6"}) {
     Strip s = cantilever_strip();
