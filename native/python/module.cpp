@@ -9,6 +9,7 @@ void bind_environment(py::module_& m);
 void bind_generate(py::module_& m);
 void bind_modes(py::module_& m);
 void bind_drawing(py::module_& m);
+void bind_step(py::module_& m);
 }  // namespace sheetgen::python
 
 PYBIND11_MODULE(_sheetgen_native, m) {
@@ -18,4 +19,5 @@ PYBIND11_MODULE(_sheetgen_native, m) {
   sheetgen::python::bind_generate(m);
   sheetgen::python::bind_modes(m);
   sheetgen::python::bind_drawing(m);
+  sheetgen::python::bind_step(m);
 }

@@ -38,6 +38,7 @@
 #include <Poly_Triangulation.hxx>
 #include <STEPControl_Writer.hxx>
 #include <ShapeFix_Face.hxx>
+#include <ShapeFix_Shape.hxx>
 #include <ShapeUpgrade_UnifySameDomain.hxx>
 #include <Standard_Failure.hxx>
 #include <TopExp_Explorer.hxx>
@@ -80,7 +81,7 @@ TopoDS_Face flat_face(const FlatPattern& flat, const std::vector<RivetHole>& hol
   BRepBuilderAPI_MakePolygon poly;
   for (const Vec2& q : flat.outline) poly.Add(gp_Pnt((q.x() - shift.x()) * kMm, (q.y() - shift.y()) * kMm, 0));
   poly.Close();
-  if (!poly.IsDone()) throw std::runtime_error("the flat outline is not a closed polygon");
+  if (!poly.IsDone()) throw StepGeometryError("the flat outline is not a closed polygon");
   BRepBuilderAPI_MakeFace face(gp_Pln(gp::XOY()), poly.Wire(), true);
   for (const RivetHole& h : holes) {
     const gp_Pnt c((h.flat.x() - shift.x()) * kMm, (h.flat.y() - shift.y()) * kMm, 0);
@@ -88,7 +89,7 @@ TopoDS_Face flat_face(const FlatPattern& flat, const std::vector<RivetHole>& hol
     const TopoDS_Wire w = BRepBuilderAPI_MakeWire(BRepBuilderAPI_MakeEdge(circle).Edge()).Wire();
     face.Add(TopoDS::Wire(w.Reversed()));  // a hole runs clockwise seen from the top
   }
-  if (!face.IsDone()) throw std::runtime_error("the flat outline does not make a face");
+  if (!face.IsDone()) throw StepGeometryError("the flat outline does not make a face");
   ShapeFix_Face fix(face.Face());  // orients the hole wires whatever their start
   fix.Perform();
   return fix.Face();
@@ -114,7 +115,7 @@ Vec2 interior_point(const TopoDS_Face& face) {
   BRepMesh_IncrementalMesh mesh(face, 0.5);  // mm; any mesh will do
   TopLoc_Location loc;
   const Handle(Poly_Triangulation) tri = BRep_Tool::Triangulation(face, loc);
-  if (tri.IsNull() || tri->NbTriangles() == 0) throw std::runtime_error("a flat region could not be meshed");
+  if (tri.IsNull() || tri->NbTriangles() == 0) throw StepGeometryError("a flat region could not be meshed");
   int a, b, c;
   tri->Triangle(1).Get(a, b, c);
   const gp_XYZ g = (tri->Node(a).XYZ() + tri->Node(b).XYZ() + tri->Node(c).XYZ()) / 3.0;
@@ -141,7 +142,7 @@ std::vector<std::vector<Vec2>> bend_zone_polygons(const FlatPattern& flat, const
   std::vector<std::vector<Vec2>> out;
   for (auto* poly : {&parent, &child})
     if (poly->size() >= 3 && std::abs(signed_area(*poly)) > 1e-12) out.push_back(*poly);  // > 1 mm^2 x 1e-6
-  if (out.empty()) throw std::runtime_error("the bend zone of tab " + std::to_string(b.tab) + " is empty");
+  if (out.empty()) throw StepGeometryError("the bend zone of tab " + std::to_string(b.tab) + " is empty");
   return out;
 }
 
@@ -173,7 +174,7 @@ TopoDS_Wire wrap_wire(const TopoDS_Wire& w, const TopoDS_Face& zone, const Handl
   std::vector<gp_Pnt2d> pts;
   for (BRepTools_WireExplorer xe(w, zone); xe.More(); xe.Next()) {
     if (BRepAdaptor_Curve(xe.Current()).GetType() != GeomAbs_Line)
-      throw std::runtime_error("a curved edge (a hole?) lies in the bend zone of tab " + std::to_string(tab));
+      throw StepGeometryError("a curved edge (a hole?) lies in the bend zone of tab " + std::to_string(tab));
     pts.push_back(uv(BRep_Tool::Pnt(xe.CurrentVertex())));
   }
   double area2 = 0;  // twice the signed area in (u, v)
@@ -190,7 +191,7 @@ TopoDS_Wire wrap_wire(const TopoDS_Wire& w, const TopoDS_Face& zone, const Handl
     const Handle(Geom2d_TrimmedCurve) seg = GCE2d_MakeSegment(pts[i], pts[j]).Value();
     wire.Add(BRepBuilderAPI_MakeEdge(seg, cyl, verts[i], verts[j], seg->FirstParameter(), seg->LastParameter()).Edge());
   }
-  if (!wire.IsDone()) throw std::runtime_error("the bend zone of tab " + std::to_string(tab) + " is not a closed wire");
+  if (!wire.IsDone()) throw StepGeometryError("the bend zone of tab " + std::to_string(tab) + " is not a closed wire");
   return wire.Wire();
 }
 
@@ -220,7 +221,7 @@ TopoDS_Face wrap_bend_zone(const TopoDS_Face& zone, const FlatBend& b, const Fla
   BRepBuilderAPI_MakeFace face(cyl, wrap_wire(outer, zone, cyl, uv, true, b.tab), true);
   for (TopExp_Explorer xw(zone, TopAbs_WIRE); xw.More(); xw.Next())
     if (!xw.Current().IsSame(outer)) face.Add(wrap_wire(TopoDS::Wire(xw.Current()), zone, cyl, uv, false, b.tab));
-  if (!face.IsDone()) throw std::runtime_error("the bend face of tab " + std::to_string(b.tab) + " could not be built");
+  if (!face.IsDone()) throw StepGeometryError("the bend face of tab " + std::to_string(b.tab) + " could not be built");
   TopoDS_Face f = face.Face();
   BRepLib::BuildCurves3d(f, 1e-6);
   ShapeFix_Face fix(f);
@@ -264,7 +265,7 @@ std::vector<TopoDS_Face> joined_sheets(const std::vector<TopoDS_Face>& faces) {
   fuse.SetTools(tools);
   fuse.SetFuzzyValue(1e-4);  // mm: the common plane is computed twice, once per gusset
   fuse.Build();
-  if (!fuse.IsDone() || fuse.HasErrors()) throw std::runtime_error("joining the sheets of a self-rivet failed");
+  if (!fuse.IsDone() || fuse.HasErrors()) throw StepGeometryError("joining the sheets of a self-rivet failed");
   ShapeUpgrade_UnifySameDomain unify(fuse.Shape(), true, true, false);
   unify.Build();
   return faces_of(unify.Shape());
@@ -294,14 +295,14 @@ TopoDS_Shell mid_surface(const FlatPattern& flat, const std::vector<RivetHole>& 
     cut.SetTools(zones);
     cut.SetFuzzyValue(1e-6);  // mm: zone sides lie on the outline's edges
     cut.Build();
-    if (!cut.IsDone() || cut.HasErrors()) throw std::runtime_error("cutting the bend zones out of the flat sheet failed");
+    if (!cut.IsDone() || cut.HasErrors()) throw StepGeometryError("cutting the bend zones out of the flat sheet failed");
     planar = cut.Shape();
   }
   const std::vector<int> group = self_rivet_groups(flat, holes);
   std::map<int, std::vector<TopoDS_Face>> grouped;
   for (const TopoDS_Face& f : faces_of(planar)) {
     const int tab = piece_at(flat, interior_point(f));
-    if (tab < 0) throw std::runtime_error("a flat region belongs to no tab");
+    if (tab < 0) throw StepGeometryError("a flat region belongs to no tab");
     const TopoDS_Face placed = TopoDS::Face(BRepBuilderAPI_Transform(f, to_gp(maps[tab]), true).Shape());
     if (group[tab] >= 0)
       grouped[group[tab]].push_back(placed);
@@ -314,7 +315,7 @@ TopoDS_Shell mid_surface(const FlatPattern& flat, const std::vector<RivetHole>& 
   std::vector<TopoDS_Shell> shells;
   for (TopExp_Explorer x(sew.SewedShape(), TopAbs_SHELL); x.More(); x.Next()) shells.push_back(TopoDS::Shell(x.Current()));
   if (shells.size() != 1)
-    throw std::runtime_error("the bent sheet sewed into " + std::to_string(shells.size()) + " pieces instead of one");
+    throw StepGeometryError("the bent sheet sewed into " + std::to_string(shells.size()) + " pieces instead of one");
   return shells[0];
 }
 
@@ -325,20 +326,20 @@ TopoDS_Shell mid_surface(const FlatPattern& flat, const std::vector<RivetHole>& 
 TopoDS_Solid thicken(const TopoDS_Shape& mid, double t_mm) {
   BRepOffsetAPI_MakeOffsetShape bottom;
   bottom.PerformBySimple(mid, -0.5 * t_mm);
-  if (!bottom.IsDone()) throw std::runtime_error("offsetting the bent sheet by -t/2 failed");
+  if (!bottom.IsDone()) throw StepGeometryError("offsetting the bent sheet by -t/2 failed");
   BRepOffsetAPI_MakeThickSolid thick;
   thick.MakeThickSolidBySimple(bottom.Shape(), t_mm);
-  if (!thick.IsDone()) throw std::runtime_error("thickening the bent sheet failed");
+  if (!thick.IsDone()) throw StepGeometryError("thickening the bent sheet failed");
   for (TopExp_Explorer x(thick.Shape(), TopAbs_SHELL); x.More(); x.Next()) {
     // A fresh solid on the offset's closed shell: the offset keeps the shell's
     // orientation, which sewing chose freely, so the solid is turned outside out.
     TopoDS_Shell shell = TopoDS::Shell(x.Current());
     shell.Closed(BRep_Tool::IsClosed(shell));  // the offset leaves the flag unset; booleans read it
     TopoDS_Solid solid = BRepBuilderAPI_MakeSolid(shell).Solid();
-    if (!BRepLib::OrientClosedSolid(solid)) throw std::runtime_error("the thickened sheet is not a closed solid");
+    if (!BRepLib::OrientClosedSolid(solid)) throw StepGeometryError("the thickened sheet is not a closed solid");
     return solid;
   }
-  throw std::runtime_error("thickening the bent sheet gave no solid");
+  throw StepGeometryError("thickening the bent sheet gave no solid");
 }
 
 StepSolidReport measure(const TopoDS_Shape& shape, double inside_radius_mm, double t_mm) {
@@ -378,9 +379,17 @@ TopoDS_Shape bent_solid(const FlatPattern& flat, const std::vector<RivetHole>& h
   // One face per surface: each bend zone was wrapped as two pieces (parent's and tab's side).
   ShapeUpgrade_UnifySameDomain unify(sheet, true, true, false);
   unify.Build();
-  std::vector<TopoDS_Shape> solids;  // a boolean returns a compound; the file gets the solid itself
-  for (TopExp_Explorer x(unify.Shape(), TopAbs_SOLID); x.More(); x.Next()) solids.push_back(x.Current());
-  return solids.size() == 1 ? solids[0] : unify.Shape();
+  TopoDS_Shape shape = unify.Shape();
+  if (!BRepCheck_Analyzer(shape).IsValid()) {
+    // A ruled wall of the offset occasionally comes out with its wire turned
+    // the wrong way ("unorientable" on the shelf sample); ShapeFix orients it.
+    ShapeFix_Shape fix(shape);
+    fix.Perform();
+    shape = fix.Shape();
+  }
+  std::vector<TopoDS_Shape> solids;
+  for (TopExp_Explorer x(shape, TopAbs_SOLID); x.More(); x.Next()) solids.push_back(x.Current());
+  return solids.size() == 1 ? solids[0] : shape;
 }
 
 TopoDS_Solid flat_solid(const FlatPattern& flat, const std::vector<RivetHole>& holes, const StepExportOptions& o) {
@@ -436,7 +445,7 @@ auto guarded(const char* what, F&& f) {
   try {
     return f();
   } catch (const Standard_Failure& e) {
-    throw std::runtime_error(std::string(what) + ": OpenCASCADE failed (" + e.GetMessageString() + ")");
+    throw StepGeometryError(std::string(what) + ": OpenCASCADE failed (" + e.GetMessageString() + ")");
   }
 }
 
@@ -454,7 +463,10 @@ StepSolidReport write_part_step(const std::string& path, const FlatPattern& flat
   return guarded(path.c_str(), [&] {
     const TopoDS_Shape solid = bent_solid(flat, holes, options);
     StepSolidReport r = measure(solid, inside_radius_mm(flat), options.thickness * kMm);
-    if (r.solids != 1 || !r.valid) { throw std::runtime_error("cannot write " + path + ": the bent solid is not valid (" + std::to_string(r.solids) + " solids, valid " + std::to_string(r.valid) + ")"); }
+    if (r.solids != 1 || !r.valid) { 
+      throw StepGeometryError("cannot write " + path + ": the bent solid is not valid (" + std::to_string(r.solids) +
+                              " solids, OpenCASCADE's check " + (r.valid ? "passed" : "failed") + ")");
+    }
     write_step(path, solid, options);
     return r;
   });
@@ -465,7 +477,7 @@ StepSolidReport write_flat_step(const std::string& path, const FlatPattern& flat
   return guarded(path.c_str(), [&] {
     const TopoDS_Solid solid = flat_solid(flat, holes, options);
     StepSolidReport r = measure(solid, inside_radius_mm(flat), options.thickness * kMm);
-    if (!r.valid) throw std::runtime_error("cannot write " + path + ": the flat solid is not valid");
+    if (!r.valid) throw StepGeometryError("cannot write " + path + ": the flat solid is not valid");
     write_step(path, solid, options);
     return r;
   });

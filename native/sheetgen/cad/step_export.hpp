@@ -7,6 +7,7 @@
 // and the bent solid is the same sheet with every bend zone laid on a true
 // cylinder of inside radius R. OpenCASCADE is reached only from
 // step_export.cpp (docs/code-style.md point 5).
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -14,6 +15,13 @@
 #include "sheetgen/part/rivet_holes.hpp"
 
 namespace sheetgen {
+
+// The solid could not be built or did not pass OpenCASCADE's check (as
+// opposed to a file that could not be written, a plain std::runtime_error).
+class StepGeometryError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
 
 struct StepExportOptions {
   double thickness = 1.6e-3;    // m, sheet thickness t (SheetSpec::thickness)
@@ -40,7 +48,7 @@ struct StepSolidReport {
 // the cylinder of mid radius R + t/2 (arc length along the neutral fibre =
 // the flat length, as the bend allowance defines it), then thickened by t/2
 // on both sides of that mid-surface. Throws std::invalid_argument when the
-// flat pattern is not ok and std::runtime_error when OpenCASCADE cannot build
+// flat pattern is not ok and StepGeometryError when OpenCASCADE cannot build
 // or check the solid (naming the step).
 StepSolidReport bent_part_solid_report(const FlatPattern& flat, const std::vector<RivetHole>& holes,
                                        const StepExportOptions& options = {});

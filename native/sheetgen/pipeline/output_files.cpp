@@ -8,6 +8,7 @@
 #include "sheetgen/part/exports.hpp"
 #include "sheetgen/pipeline/part_drawing.hpp"
 #include "sheetgen/pipeline/result_json.hpp"
+#include "sheetgen/pipeline/step_files.hpp"
 #include "sheetgen/report/convergence_plot.hpp"
 
 namespace sheetgen {
@@ -40,11 +41,21 @@ void write_convergence_plot(const std::string& path, const Problem& problem, con
   write_convergence_png(h, ConvergenceOptions{}, path);
 }
 
+// part.step and flat.step (docs/cad.md). A bent solid OpenCASCADE refuses does
+// not cost the run its other files: part_step_error.txt says why instead.
+void write_step_files(const fs::path& folder, const Problem& problem, const LoadOutcome& o) {
+  LoadStepOptions step;
+  step.keep_going = true;
+  const LoadStepReport r = write_load_step(problem, o, (folder / "part.step").u8string(), (folder / "flat.step").u8string(), step);
+  if (!r.part_error.empty()) write_text_file((folder / "part_step_error.txt").u8string(), r.part_error + "\n");
+}
+
 // One load's folder: the drawings and model of a valid part, the history and its plot.
 void write_load_folder(const fs::path& folder, const Problem& problem, const LoadOutcome& o) {
   fs::create_directories(folder);
   if (o.ok) write_manufacturing_files(folder.u8string(), o.realised, o.plan);
   if (o.ok) write_part_drawing(load_result_json(problem, o), problem, (folder / "drawing.pdf").u8string());
+  if (o.ok) write_step_files(folder, problem, o);
   write_text_file((folder / "history.csv").u8string(), history_csv(o));
   write_convergence_plot((folder / "convergence.png").u8string(), problem, o);
 }
