@@ -102,6 +102,12 @@ class Errors(unittest.TestCase):
         self.fails("load 'fan' is not in this run (loads: psu, radio box)", "TMP/p.step", load="fan")
         self.fails("load 'psu' has no valid part in this run, so no drawing sheet", "TMP/p.pdf", load="psu",
                    kind="DRAWING")
+        refused = {k: v for k, v in run_files().items() if k != "radio box/part.step"}
+        refused["radio box/part_step_error.txt"] = "BRepCheck: the offset solid is not valid (face 12)\n"
+        self.fails("no bent part STEP for 'radio box': BRepCheck: the offset solid is not valid (face 12)",
+                   "TMP/p.step", files=refused)
+        with tempfile.TemporaryDirectory() as d:   # the flat pattern's STEP is still there
+            E.export(refused, DOC, "radio box", "FLAT_STEP", os.path.join(d, "f.step"))
         old = {k: v for k, v in run_files().items() if not k.endswith(".step")}
         self.fails("this run has no flat pattern STEP for 'radio box' (radio box/flat.step): it was made before "
                    "sheetgen wrote one; Re-run to make it", "TMP/p.step", kind="FLAT_STEP", files=old)

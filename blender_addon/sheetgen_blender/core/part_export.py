@@ -22,6 +22,11 @@ KINDS = {
 }
 
 
+# What write_outputs leaves in the load's folder instead of part.step when OpenCASCADE cannot build or
+# check the bent solid (docs/cad.md).
+STEP_ERROR = "part_step_error.txt"
+
+
 class ExportError(Exception):
     """One sentence for the user (self.report in the operator)."""
 
@@ -60,6 +65,9 @@ def stored_file(files, doc, load, kind):
         raise ExportError("load '%s' has no valid part in this run, so no %s" % (load, what))
     rel = load + "/" + name
     if rel not in files:
+        why = files.get(load + "/" + STEP_ERROR) if kind == "PART_STEP" else None
+        if why and why.strip():   # OpenCASCADE refused the solid: the run kept its other files and said why
+            raise ExportError("no bent part STEP for '%s': %s" % (load, why.strip().splitlines()[0]))
         raise ExportError(_missing(load, kind))
     return jsonio.text_to_file(files[rel])
 
@@ -83,7 +91,8 @@ def export(files, doc, load, kind, path, make=None):
         data = stored_file(files, doc, load, kind)
     except ExportError:
         name = KINDS[kind][0]
-        if make is None or load + "/" + name in files or not _has_valid_part(doc, load):
+        if (make is None or load + "/" + name in files or not _has_valid_part(doc, load)
+                or (kind == "PART_STEP" and load + "/" + STEP_ERROR in files)):
             raise
         try:
             make(kind, load, path)
