@@ -23,7 +23,7 @@ while [ $# -gt 0 ]; do
   case "$1" in
     --build-dir) BUILD_DIR="$2"; shift ;;
     --out) OUT="$2"; shift ;;
-    -h|--help) sed -n '2,18p' "$0"; exit 0 ;;
+    -h|--help) sed -n '2,17p' "$0"; exit 0 ;;
     *) echo "package_addon.sh: unknown argument '$1' (see --help)" >&2; exit 1 ;;
   esac
   shift

@@ -133,6 +133,16 @@ class AddonZip(unittest.TestCase):
         with open(os.path.join(ROOT, "LICENSE"), encoding="utf-8") as f:
             self.assertIn("GNU GENERAL PUBLIC LICENSE\n                       Version 3", f.read(200))
 
+    def test_no_module_no_zip(self):
+        with tempfile.TemporaryDirectory() as d:
+            os.makedirs(os.path.join(d, "python"))
+            run = subprocess.run(["bash", os.path.join(ROOT, "scripts", "package_addon.sh"), "--build-dir", d,
+                                  "--out", d], capture_output=True, text=True, timeout=60)
+            self.assertEqual(run.returncode, 1)
+            self.assertEqual(run.stderr.count("\n"), 1)
+            self.assertIn("expected one %s/python/_sheetgen_native*.so, found 0" % d, run.stderr)
+            self.assertEqual(os.listdir(d), ["python"])
+
     def test_installed_from_the_zip_into_the_empty_configuration(self):
         facts = self.facts()
         self.assertEqual(facts["install"], ["FINISHED"])
