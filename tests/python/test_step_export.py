@@ -12,7 +12,8 @@ and closed); its volume is the flat area (minus the holes) times t within
 gussets, which sheetgen bends into one plane and the solid holds once,
 computed here from result.json's tab corners with shapely); its bounding box
 is part.obj's within t on every side; its cylindrical faces of radius R or
-R + t number 2 per bend (gmsh: its cylinders are those). flat.step is one
+R + t number 2 per bend and the others one per hole (a self-rivet's two holes
+are one through the joined plate; gmsh counts all cylinders). flat.step is one
 solid whose outline vertices at z = 0 are flat.dxf's CUT polyline (ezdxf)
 within 0.01 mm both ways (the others lie on the DXF's hole circles) and whose
 volume is the flat area minus the holes times t. The native module's
@@ -154,9 +155,13 @@ def check_part(out_dir, prob, part, fc, failures):
     if box_err > t:
         fail(f"bounding box {box_err:.3f} mm from part.obj's (limit t = {t} mm)")
     bend_cyl = sum(1 for r in p["cylinders"] if abs(r - R) < 1e-3 or abs(r - R - t) < 1e-3)
+    hole_cyl = len(p["cylinders"]) - bend_cyl
+    # A self-rivet's two holes are one hole through the joined plate.
+    unique_holes = len(holes) - len(part.get("self_rivets", []))
     gmsh_cyl = types.count("Cylinder")
-    if bend_cyl != 2 * bends or gmsh_cyl != 2 * bends:
-        fail(f"cylinders of radius R or R + t: FreeCAD {bend_cyl}, gmsh {gmsh_cyl} (all), expected 2 x {bends}")
+    if bend_cyl != 2 * bends or hole_cyl != unique_holes or gmsh_cyl != 2 * bends + unique_holes:
+        fail(f"cylinders: FreeCAD {bend_cyl} of radius R or R + t (expected 2 x {bends}) and {hole_cyl} others "
+             f"(expected {unique_holes} hole walls), gmsh {gmsh_cyl} in all")
     fvols, fmasses, _, _, fpoints = gmsh_read(flat_step)
     f = fc[flat_step]
     outline, dxf_holes = dxf_outline_and_holes(os.path.join(folder, "flat.dxf"))
@@ -171,7 +176,7 @@ def check_part(out_dir, prob, part, fc, failures):
             f"volume {p['volume']:.1f} mm³ vs (flat - holes{' - overlap' if overlap else ''}) x t {expected:.1f}: "
             f"gmsh {err_gmsh * 100:+.3f} %, FreeCAD {err_fc * 100:+.3f} %"
             + (f" (against flat x t without the overlap {raw * 100:+.3f} %, overlap {overlap:.1f} mm²)" if overlap else "")
-            + f"; bbox vs part.obj max {box_err:.3f} mm; cylinders R/R+t {bend_cyl} (gmsh all {gmsh_cyl}); "
+            + f"; bbox vs part.obj max {box_err:.3f} mm; cylinders R/R+t {bend_cyl}, holes {hole_cyl} (gmsh all {gmsh_cyl}); "
             f"flat.step volume {flat_err:+.1e}, outline vs flat.dxf max {dev:.1e} mm over {compared} vertices")
 
 

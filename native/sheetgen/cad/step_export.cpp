@@ -7,7 +7,6 @@
 #include <BRepAlgoAPI_Cut.hxx>
 #include <BRepAlgoAPI_Fuse.hxx>
 #include <BRepBndLib.hxx>
-#include <BRepBuilderAPI_Copy.hxx>
 #include <BRepBuilderAPI_MakeEdge.hxx>
 #include <BRepBuilderAPI_MakeFace.hxx>
 #include <BRepBuilderAPI_MakePolygon.hxx>
@@ -22,10 +21,10 @@
 #include <BRepMesh_IncrementalMesh.hxx>
 #include <BRepOffsetAPI_MakeOffsetShape.hxx>
 #include <BRepOffsetAPI_MakeThickSolid.hxx>
+#include <BRepPrimAPI_MakeCylinder.hxx>
 #include <BRepPrimAPI_MakePrism.hxx>
 #include <BRepTools.hxx>
 #include <BRepTools_WireExplorer.hxx>
-#include <BRep_Builder.hxx>
 #include <BRep_Tool.hxx>
 #include <Bnd_Box.hxx>
 #include <GCE2d_MakeSegment.hxx>
@@ -275,7 +274,9 @@ std::vector<TopoDS_Face> joined_sheets(const std::vector<TopoDS_Face>& faces) {
 // zones moved rigidly piece by piece (the sheets of each self-rivet joined),
 // every bend zone wrapped onto its cylinder, sewn along the tangent lines
 // (where the faces meet tangentially).
-TopoDS_Shell mid_surface(const FlatPattern& flat, const std::vector<RivetHole>& holes, const StepExportOptions& o) {
+// `holes`: those cut in the flat sheet; `group`: self_rivet_groups.
+TopoDS_Shell mid_surface(const FlatPattern& flat, const std::vector<RivetHole>& holes, const std::vector<int>& group,
+                         const StepExportOptions& o) {
   const TopoDS_Face sheet = flat_face(flat, holes, Vec2::Zero());
   const std::vector<FlatPieceTransform> maps = fold_transforms(flat);
   BRepBuilderAPI_Sewing sew(o.sewing_tolerance * kMm);
@@ -298,7 +299,6 @@ TopoDS_Shell mid_surface(const FlatPattern& flat, const std::vector<RivetHole>& 
     if (!cut.IsDone() || cut.HasErrors()) throw StepGeometryError("cutting the bend zones out of the flat sheet failed");
     planar = cut.Shape();
   }
-  const std::vector<int> group = self_rivet_groups(flat, holes);
   std::map<int, std::vector<TopoDS_Face>> grouped;
   for (const TopoDS_Face& f : faces_of(planar)) {
     const int tab = piece_at(flat, interior_point(f));
@@ -370,13 +370,10 @@ double inside_radius_mm(const FlatPattern& flat) {
   return flat.bends.empty() ? -1 : flat.bends.front().inside_radius * kMm;
 }
 
-TopoDS_Shape bent_solid(const FlatPattern& flat, const std::vector<RivetHole>& holes, const StepExportOptions& o) {
-  if (!flat.ok()) throw std::invalid_argument("the flat pattern is not valid: " + flat.message);
-  if (!(o.thickness > 0)) throw std::invalid_argument("StepExportOptions::thickness must be > 0 m");
-  // The holes are cut in the flat sheet, not drilled into the solid afterwards:
-  // no boolean on the solid is needed.
-  const TopoDS_Shape sheet = thicken(mid_surface(flat, holes, o), o.thickness * kMm);
-  // One face per surface: each bend zone was wrapped as two pieces (parent's and tab's side).
+// The thickened sheet as written: one face per surface (each bend zone was
+// wrapped as two pieces, parent's and tab's side), checked, and the solid
+// itself rather than a compound holding it.
+TopoDS_Shape finished(const TopoDS_Shape& sheet) {
   ShapeUpgrade_UnifySameDomain unify(sheet, true, true, false);
   unify.Build();
   TopoDS_Shape shape = unify.Shape();
@@ -390,6 +387,62 @@ TopoDS_Shape bent_solid(const FlatPattern& flat, const std::vector<RivetHole>& h
   std::vector<TopoDS_Shape> solids;
   for (TopExp_Explorer x(shape, TopAbs_SOLID); x.More(); x.Next()) solids.push_back(x.Current());
   return solids.size() == 1 ? solids[0] : shape;
+}
+
+double volume_mm3(const TopoDS_Shape& s) {
+  GProp_GProps props;
+  BRepGProp::VolumeProperties(s, props);
+  return props.Mass();
+}
+
+// The holes drilled square through their sheets, so each wall is a true
+// cylinder a CAD system recognises as a hole. Each drill spans its sheet's
+// thickness exactly; a self-rivet's two holes, one place in the joined
+// plate, are drilled once. Returns a null shape unless the result is one
+// valid solid that lost the drills' volume (to 1 %): the caller then cuts
+// the holes in the flat sheet instead.
+TopoDS_Shape drilled(const TopoDS_Shape& solid, const FlatPattern& flat, const std::vector<RivetHole>& holes, double t) {
+  const std::vector<FlatPieceTransform> maps = fold_transforms(flat);
+  TopTools_ListOfShape drills;
+  std::vector<Vec3> centres;
+  double removed = 0;  // mm^3
+  for (const RivetHole& h : holes) {
+    const Vec3 c = maps[h.tab].apply(h.flat), n = maps[h.tab].rotation.col(2);
+    if (std::any_of(centres.begin(), centres.end(), [&](const Vec3& q) { return (q - c).norm() < 1e-6; })) continue;
+    centres.push_back(c);
+    const double r = 0.5 * h.diameter * kMm;
+    drills.Append(BRepPrimAPI_MakeCylinder(gp_Ax2(mm(c - 0.5 * t * n), dir(n)), r, t * kMm).Shape());
+    removed += M_PI * r * r * t * kMm;
+  }
+  TopTools_ListOfShape args;
+  args.Append(solid);
+  BRepAlgoAPI_Cut cut;
+  cut.SetArguments(args);
+  cut.SetTools(drills);
+  cut.SetFuzzyValue(1e-5);  // mm: the drills' caps lie on the sheet's faces
+  cut.Build();
+  if (!cut.IsDone() || cut.HasErrors()) return TopoDS_Shape();
+  const TopoDS_Shape out = finished(cut.Shape());
+  if (out.ShapeType() != TopAbs_SOLID || !BRepCheck_Analyzer(out).IsValid()) return TopoDS_Shape();
+  if (std::abs(volume_mm3(solid) - volume_mm3(out) - removed) > 0.01 * removed) return TopoDS_Shape();
+  return out;
+}
+
+TopoDS_Shape bent_solid(const FlatPattern& flat, const std::vector<RivetHole>& holes, const StepExportOptions& o) {
+  if (!flat.ok()) throw std::invalid_argument("the flat pattern is not valid: " + flat.message);
+  if (!(o.thickness > 0)) throw std::invalid_argument("StepExportOptions::thickness must be > 0 m");
+  for (const RivetHole& h : holes)
+    if (h.tab < 0 || h.tab >= static_cast<int>(flat.pieces.size()))
+      throw std::invalid_argument("rivet hole " + hole_label(h) + " names tab " + std::to_string(h.tab));
+  const std::vector<int> group = self_rivet_groups(flat, holes);
+  const double t_mm = o.thickness * kMm;
+  if (!holes.empty()) {
+    const TopoDS_Shape plain = finished(thicken(mid_surface(flat, {}, group, o), t_mm));
+    const TopoDS_Shape out = plain.ShapeType() == TopAbs_SOLID ? drilled(plain, flat, holes, o.thickness) : TopoDS_Shape();
+    if (!out.IsNull()) return out;
+  }
+  // Holes cut in the flat sheet: their walls are the offset's ruled faces.
+  return finished(thicken(mid_surface(flat, holes, group, o), t_mm));
 }
 
 TopoDS_Solid flat_solid(const FlatPattern& flat, const std::vector<RivetHole>& holes, const StepExportOptions& o) {

@@ -38,8 +38,7 @@ struct StepSolidReport {
   double volume_mm3 = 0;
   int faces = 0;
   int bend_faces = 0;           // cylindrical faces of radius R or R + t (2 per bend)
-  int hole_faces = 0;           // cylindrical faces of any other radius: the flat solid's hole walls (the
-                                // bent solid's hole walls are ruled faces of the offset, docs/cad.md)
+  int hole_faces = 0;           // cylindrical faces of any other radius: the hole walls (docs/cad.md "Holes")
   double box_min_mm[3] = {0, 0, 0}, box_max_mm[3] = {0, 0, 0};  // axis-aligned bounding box
 };
 

@@ -57,7 +57,7 @@ TEST(StepExport, BentSolidHasTheClosedFormVolumeAndTwoCylindersPerBend) {
   EXPECT_EQ(r.solids, 1);
   EXPECT_TRUE(r.valid);
   EXPECT_EQ(r.bend_faces, 4);  // inside and outside cylinder of each bend
-  EXPECT_EQ(r.hole_faces, 0);  // the holes' walls are ruled faces here (docs/cad.md)
+  EXPECT_EQ(r.hole_faces, 2);  // drilled: each wall a true cylinder (docs/cad.md "Holes")
   const double t = o.thickness * 1e3, R = 6.4, rho = R + 0.5 * t;
   double mid_area = part.flat.area() * 1e6 - holes_area_mm2(part.holes);
   // Each bend zone is w x BA in the flat (a rectangle at the parent, the
