@@ -1,5 +1,7 @@
 #include "sheetgen/pipeline/step_files.hpp"
 
+#include <filesystem>
+
 #include "sheetgen/core/input_error.hpp"
 
 namespace sheetgen {
@@ -15,7 +17,11 @@ LoadStepReport write_load_step(const Problem& problem, const LoadOutcome& load, 
     r.part = write_part_step(part_path, load.plan.flat, load.plan.holes, o);
   } catch (const StepGeometryError& e) {
     if (!options.keep_going) throw;
+    // Named by the file's name: the folder may be a staging folder that is renamed afterwards.
     r.part_error = e.what();
+    const std::string name = std::filesystem::u8path(part_path).filename().u8string();
+    for (size_t at = r.part_error.find(part_path); at != std::string::npos; at = r.part_error.find(part_path, at))
+      r.part_error.replace(at, part_path.size(), name);
   }
   if (!flat_path.empty()) {
     o.product = load.load + " flat pattern";

@@ -19,7 +19,7 @@ struct LoadStepOptions {
 struct LoadStepReport {
   StepSolidReport part;    // the bent solid as written
   StepSolidReport flat;    // the flat solid as written
-  std::string part_error;  // with keep_going: why part.step was not written ("" when it was)
+  std::string part_error;  // with keep_going: why part.step was not written, naming the file without its folder ("" when it was)
 };
 
 // Writes the load's part.step to `part_path` and, unless `flat_path` is empty,
