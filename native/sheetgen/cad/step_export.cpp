@@ -135,7 +135,9 @@ std::vector<std::vector<Vec2>> bend_zone_polygons(const FlatPattern& flat, const
   std::vector<Vec2> child = clip_half_plane(flat.pieces[b.tab].polygon, -O, -(J0.dot(O) + b.allowance - b.setback));
   std::vector<Vec2> parent = flat.pieces[b.parent].polygon;
   parent = clip_half_plane(parent, O, J0.dot(O) - b.setback);
-  parent = clip_half_plane(parent, -O, -J0.dot(O));
+  // A bend past ~125 deg has BA < SB: the tab's tangent line lies behind the
+  // parent's edge line, and the sheet between them is the tab's flat sheet.
+  parent = clip_half_plane(parent, -O, -(J0.dot(O) + std::min(0.0, b.allowance - b.setback)));
   parent = clip_half_plane(parent, E, J0.dot(E));
   parent = clip_half_plane(parent, -E, -(J0.dot(E) + root_width));
   std::vector<std::vector<Vec2>> out;
@@ -145,17 +147,63 @@ std::vector<std::vector<Vec2>> bend_zone_polygons(const FlatPattern& flat, const
   return out;
 }
 
-// The tab whose flat piece holds `q` (m): the pieces tile the sheet outside the notches.
+// Whether `q` (m) lies in the flat sheet that moves with tab `tab`: its piece,
+// and for a bend with BA < SB also the strip behind its root up to its
+// tangent line BA - SB, which lies in the parent's piece but is the tab's sheet.
+bool in_tab_sheet(const FlatPattern& flat, int tab, const Vec2& q, double tol) {
+  const std::vector<Vec2>& poly = flat.pieces[tab].polygon;
+  if (poly.size() < 3) return false;
+  if (point_in_convex(q, poly, tol)) return true;
+  for (const FlatBend& b : flat.bends)
+    if (b.tab == tab && b.allowance < b.setback) {
+      const Vec2 d = (b.allowance - b.setback) * b.outward;
+      std::vector<Vec2> strip = {b.root_b, b.root_a, b.root_a + d, b.root_b + d};
+      if (signed_area(strip) < 0) std::reverse(strip.begin(), strip.end());
+      return point_in_convex(q, strip, tol);
+    }
+  return false;
+}
+
+// The tab whose flat sheet holds `q` (m): the pieces tile the sheet outside
+// the notches; children first, so a strip behind a root goes to its tab.
 int piece_at(const FlatPattern& flat, const Vec2& q) {
   int best = -1;
   double best_d = std::numeric_limits<double>::infinity();
-  for (const FlatPiece& p : flat.pieces) {
-    if (p.polygon.size() < 3) continue;
-    if (point_in_convex(q, p.polygon, 1e-9)) return p.tab;
-    const Vec2 c = polygon_centroid(p.polygon);
-    if ((c - q).norm() < best_d) best_d = (c - q).norm(), best = p.tab;
+  for (int i = static_cast<int>(flat.pieces.size()) - 1; i >= 0; --i) {
+    const std::vector<Vec2>& poly = flat.pieces[i].polygon;
+    if (poly.size() < 3) continue;
+    if (in_tab_sheet(flat, i, q, 1e-9)) return flat.pieces[i].tab;
+    const Vec2 c = polygon_centroid(poly);
+    if ((c - q).norm() < best_d) best_d = (c - q).norm(), best = flat.pieces[i].tab;
   }
   return best;
+}
+
+// The tab whose plane tab `i` lies in: itself, or for a flat extension (no
+// bend) its parent's, up the tree.
+int plane_of(const FlatPattern& flat, int i) {
+  std::vector<bool> bent(flat.pieces.size(), false);
+  for (const FlatBend& b : flat.bends) bent[b.tab] = true;
+  while (i > 0 && !bent[i] && flat.pieces[i].parent >= 0) i = flat.pieces[i].parent;
+  return i;
+}
+
+// A flat region is placed by one tab's motion, so it must lie in that tab's
+// plane: every vertex of it in a piece of the same plane (a flat extension
+// shares its parent's). Otherwise the bend zones did not separate two tabs
+// and the region would be placed half in the wrong plane.
+void check_one_plane(const FlatPattern& flat, const TopoDS_Face& region, int tab) {
+  const int plane = plane_of(flat, tab);
+  for (TopExp_Explorer xv(region, TopAbs_VERTEX); xv.More(); xv.Next()) {
+    const gp_Pnt p = BRep_Tool::Pnt(TopoDS::Vertex(xv.Current()));
+    const Vec2 q(p.X() / kMm, p.Y() / kMm);
+    bool inside = false;
+    for (const FlatPiece& pc : flat.pieces)
+      if (pc.polygon.size() >= 3 && plane_of(flat, pc.tab) == plane && in_tab_sheet(flat, pc.tab, q, 1e-6)) inside = true;
+    if (!inside)
+      throw StepGeometryError("the flat region of tab " + std::to_string(tab) + " reaches (" + std::to_string(p.X()) + ", " +
+                              std::to_string(p.Y()) + ") mm of the flat, outside its plane's pieces: the bend zones did not separate it");
+  }
 }
 
 gp_Trsf to_gp(const FlatPieceTransform& m) {
@@ -294,7 +342,15 @@ TopoDS_Shell mid_surface(const FlatPattern& flat, const std::vector<RivetHole>& 
     BRepAlgoAPI_Cut cut;
     cut.SetArguments(args);
     cut.SetTools(zones);
-    cut.SetFuzzyValue(1e-6);  // mm: zone sides lie on the outline's edges
+    // mm. Zone sides lie on the outline's edges, but a bend whose root ends
+    // within the unfolding's corner tolerance (FlatPatternOptions::corner_tolerance,
+    // 1e-7 m = 1e-4 mm) of its parent edge's end has no relief and its zone
+    // stops that far short of the corner: a fuzzy value below it leaves a
+    // sliver of sheet there joining the parent's flat region to the tab's, and
+    // the two are then placed as one face in the parent's plane (the bay's
+    // radio and transponder, docs/cad.md). 1e-3 mm is 10x that tolerance and
+    // far below the kerf (0.2 mm), the least real feature of the outline.
+    cut.SetFuzzyValue(1e-3);
     cut.Build();
     if (!cut.IsDone() || cut.HasErrors()) throw StepGeometryError("cutting the bend zones out of the flat sheet failed");
     planar = cut.Shape();
@@ -303,6 +359,7 @@ TopoDS_Shell mid_surface(const FlatPattern& flat, const std::vector<RivetHole>& 
   for (const TopoDS_Face& f : faces_of(planar)) {
     const int tab = piece_at(flat, interior_point(f));
     if (tab < 0) throw StepGeometryError("a flat region belongs to no tab");
+    check_one_plane(flat, f, tab);
     const TopoDS_Face placed = TopoDS::Face(BRepBuilderAPI_Transform(f, to_gp(maps[tab]), true).Shape());
     if (group[tab] >= 0)
       grouped[group[tab]].push_back(placed);

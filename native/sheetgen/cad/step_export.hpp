@@ -26,10 +26,10 @@ class StepGeometryError : public std::runtime_error {
 struct StepExportOptions {
   double thickness = 1.6e-3;    // m, sheet thickness t (SheetSpec::thickness)
   std::string product = "part";  // the STEP product name a CAD tree shows
-  // m, the sewing tolerance that joins the bend faces to the flat faces: half
-  // the kerf, the least gap between two cut edges. 1e-5 m left the avionics
-  // bay's data_acquisition part in two pieces (docs/cad.md "Known failures").
-  double sewing_tolerance = 1e-4;
+  // m, the sewing tolerance that joins the bend faces to the flat faces:
+  // well below the kerf (0.2 mm), the least real gap between two cut edges,
+  // and above the wrap's round-off (docs/cad.md "Sewing").
+  double sewing_tolerance = 1e-5;
 };
 
 // What was built, measured on the solid before writing (mm, the file's unit).

@@ -120,6 +120,59 @@ TEST(StepExport, AnUnwritableFolderIsOneSentenceNamingThePathAndLeavesNothing) {
   std::filesystem::remove_all(dir);
 }
 
+// A one-tab part: the base 60 x 60 mm with `params` on its edge y = 0, no holes.
+FlatPattern one_tab_flat(const TabParameters& params) {
+  Part p = make_base_part({Vec3(0, 0, 0), Vec3(0.06, 0, 0), Vec3(0.06, 0.06, 0), Vec3(0, 0.06, 0)}, Vec3::UnitZ());
+  p.add_tab(0, 0, params);
+  return unfold(p, spec());
+}
+
+// t x the mid-surface area (mm^3): the flat sheet with each bend zone
+// stretched from the neutral radius R + K t to the mid radius R + t/2.
+double closed_form_volume_mm3(const FlatPattern& flat, double thickness_m) {
+  const double t = thickness_m * 1e3, R = 6.4, rho = R + 0.5 * t;
+  double mid_area = flat.area() * 1e6;
+  for (const FlatBend& b : flat.bends) mid_area += b.length * b.allowance * 1e6 * (rho / (R + 0.45 * t) - 1);
+  return mid_area * t;
+}
+
+TEST(StepExport, ASkewedRootEndingNanometresPastTheCornerIsOneValidSolid) {
+  // A 5.1 deg tab from 10 mm to the edge's end, skewed 0.5 deg: unfolding
+  // shifts its root along the edge by dL tan(theta2), 66 nm past the corner.
+  // That is inside the corner tolerance, so no relief is cut at that end and
+  // the bend zone and the outline meet at the corner only to within 66 nm.
+  // Before the zone cut's fuzzy value covered that gap (docs/cad.md "Corners
+  // within the tolerance"), this solid failed OpenCASCADE's check.
+  const FlatPattern flat = one_tab_flat({0.01, 0.05, 0.03, 0, 0.5 * kDeg, 5.1 * kDeg});
+  ASSERT_TRUE(flat.ok()) << flat.message;
+  ASSERT_EQ(flat.bends.size(), 1u);
+  StepExportOptions o;
+  o.thickness = spec().thickness;
+  const StepSolidReport r = bent_part_solid_report(flat, {}, o);
+  EXPECT_EQ(r.solids, 1);
+  EXPECT_TRUE(r.valid);
+  EXPECT_EQ(r.bend_faces, 2);
+  EXPECT_NEAR(r.volume_mm3, closed_form_volume_mm3(flat, o.thickness), 1e-5 * r.volume_mm3);
+}
+
+TEST(StepExport, ABendPastTheTangentCrossoverHasTheClosedFormVolume) {
+  // At 135 deg the bend allowance is shorter than the setback: the tab's
+  // tangent line lies behind its parent's edge line, and the strip between
+  // them is the tab's sheet. Wrapping it as the parent's would over-bend the
+  // zone and leave a gap at the tangent line.
+  const FlatPattern flat = one_tab_flat({0.01, 0.04, 0.03, 0, 0, 135 * kDeg});
+  ASSERT_TRUE(flat.ok()) << flat.message;
+  ASSERT_EQ(flat.bends.size(), 1u);
+  ASSERT_LT(flat.bends[0].allowance, flat.bends[0].setback);
+  StepExportOptions o;
+  o.thickness = spec().thickness;
+  const StepSolidReport r = bent_part_solid_report(flat, {}, o);
+  EXPECT_EQ(r.solids, 1);
+  EXPECT_TRUE(r.valid);
+  EXPECT_EQ(r.bend_faces, 2);
+  EXPECT_NEAR(r.volume_mm3, closed_form_volume_mm3(flat, o.thickness), 1e-5 * r.volume_mm3);
+}
+
 TEST(StepExport, AnInvalidFlatPatternIsRefused) {
   TwoTabPart part = two_tab_part();
   part.flat.status = ValidityReason::FlatPatternOverlap;
