@@ -54,14 +54,13 @@
 
 #include <algorithm>
 #include <cmath>
-#include <filesystem>
 #include <functional>
 #include <limits>
 #include <mutex>
 #include <map>
 #include <stdexcept>
-#include <unistd.h>
 
+#include "sheetgen/core/atomic_file.hpp"
 #include "sheetgen/core/polygon_geometry.hpp"
 
 namespace sheetgen {
@@ -523,9 +522,7 @@ struct QuietMessenger {
 };
 
 void write_step(const std::string& path, const TopoDS_Shape& shape, const StepExportOptions& o) {
-  namespace fs = std::filesystem;
-  const fs::path target = fs::u8path(path);
-  const fs::path tmp = target.parent_path() / (target.filename().u8string() + ".tmp-" + std::to_string(::getpid()));
+  AtomicFile file(path);
   {
     std::lock_guard<std::mutex> lock(step_writer_mutex);
     const QuietMessenger quiet;
@@ -535,18 +532,11 @@ void write_step(const std::string& path, const TopoDS_Shape& shape, const StepEx
     Interface_Static::SetCVal("write.step.product.name", o.product.c_str());
     if (writer.Transfer(shape, STEPControl_AsIs) != IFSelect_RetDone)
       throw std::runtime_error("cannot write " + path + ": the solid could not be translated to STEP");
-    if (writer.Write(tmp.u8string().c_str()) != IFSelect_RetDone) {
-      std::error_code ec;
-      fs::remove(tmp, ec);
+    if (writer.Write(file.temp_path().c_str()) != IFSelect_RetDone)
       throw std::runtime_error("cannot write " + path + " (is its folder there and writable?)");
-    }
   }
-  std::error_code ec;
-  fs::rename(tmp, target, ec);
-  if (ec) {
-    fs::remove(tmp, ec);
-    throw std::runtime_error("cannot write " + path + ": " + ec.message());
-  }
+  const std::string why = file.commit();
+  if (!why.empty()) throw std::runtime_error("cannot write " + path + ": " + why);
 }
 
 // OpenCASCADE reports failures as Standard_Failure; callers see one runtime_error.

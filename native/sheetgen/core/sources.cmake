@@ -3,6 +3,7 @@
 # it, so a new core file cannot be missing from the fuzzers' link.
 set(SHEETGEN_CORE_SOURCES
   input_error.cpp
+  atomic_file.cpp
   triangle_mesh.cpp
   mesh_io.cpp
   geometry.cpp

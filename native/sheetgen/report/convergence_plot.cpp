@@ -1,24 +1,21 @@
 #include "sheetgen/report/convergence_plot.hpp"
 
 #include <cairo.h>
-#include <unistd.h>
 
 #include <algorithm>
-#include <atomic>
 #include <cerrno>
 #include <cmath>
 #include <cstdio>
 #include <cstring>
-#include <filesystem>
 #include <memory>
 #include <stdexcept>
 
+#include "sheetgen/core/atomic_file.hpp"
 #include "sheetgen/report/plot_axis.hpp"
 
 namespace sheetgen {
 namespace {
 
-namespace fs = std::filesystem;
 using C = ConvergenceColours;
 
 constexpr ConvergenceColour kWhite{255, 255, 255};
@@ -465,22 +462,12 @@ void draw_footer(cairo_t* cr, const Figure& f, const std::vector<PanelSpec>& spe
 
 // Through a temporary file in the same folder, renamed over path on success.
 void write_png_atomically(cairo_surface_t* surface, const std::string& path) {
-  static std::atomic<unsigned> counter{0};
-  const std::string tmp = path + ".tmp-" + std::to_string(::getpid()) + "-" + std::to_string(counter++);
-  std::error_code ec;
+  AtomicFile file(path);
   errno = 0;
-  const cairo_status_t status = cairo_surface_write_to_png(surface, tmp.c_str());
-  if (status != CAIRO_STATUS_SUCCESS) {
-    const std::string why = errno ? std::strerror(errno) : cairo_status_to_string(status);
-    fs::remove(fs::u8path(tmp), ec);
-    cannot_write(path, why);
-  }
-  fs::rename(fs::u8path(tmp), fs::u8path(path), ec);
-  if (ec) {
-    const std::string why = ec.message();
-    fs::remove(fs::u8path(tmp), ec);
-    cannot_write(path, why);
-  }
+  const cairo_status_t status = cairo_surface_write_to_png(surface, file.temp_path().c_str());
+  if (status != CAIRO_STATUS_SUCCESS) cannot_write(path, errno ? std::strerror(errno) : cairo_status_to_string(status));
+  const std::string why = file.commit();
+  if (!why.empty()) cannot_write(path, why);
 }
 
 }  // namespace

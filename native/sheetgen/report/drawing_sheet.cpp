@@ -2,19 +2,17 @@
 
 #include <cairo-pdf.h>
 #include <cairo.h>
-#include <unistd.h>
 
 #include <algorithm>
-#include <atomic>
 #include <cerrno>
 #include <cmath>
 #include <cstdio>
 #include <cstring>
-#include <filesystem>
 #include <map>
 #include <memory>
 #include <stdexcept>
 
+#include "sheetgen/core/atomic_file.hpp"
 #include "sheetgen/report/dimension_line.hpp"
 #include "sheetgen/report/drawing_scale.hpp"
 #include "sheetgen/report/isometric_view.hpp"
@@ -24,7 +22,6 @@
 namespace sheetgen {
 namespace {
 
-namespace fs = std::filesystem;
 using namespace sheet;
 
 constexpr double kPointsPerMm = 72.0 / 25.4;
@@ -664,22 +661,15 @@ void draw_sheet(cairo_t* cr, const DrawingSheetPart& p, const DrawingSheetOption
   throw std::runtime_error(path + ": cannot write the drawing sheet (" + why + ")");
 }
 
-void finish_atomically(cairo_surface_t* surface, const std::string& tmp, const std::string& path) {
-  std::error_code ec;
+// Ends the PDF (cairo writes its tail and closes the file) and moves it over
+// the target; on failure `file` removes the temporary file as it goes.
+void finish_atomically(cairo_surface_t* surface, AtomicFile& file) {
   errno = 0;
-  cairo_surface_finish(surface);  // writes the PDF's end and closes the file
+  cairo_surface_finish(surface);
   const cairo_status_t status = cairo_surface_status(surface);
-  if (status != CAIRO_STATUS_SUCCESS) {
-    const std::string why = errno ? std::strerror(errno) : cairo_status_to_string(status);
-    fs::remove(fs::u8path(tmp), ec);
-    cannot_write(path, why);
-  }
-  fs::rename(fs::u8path(tmp), fs::u8path(path), ec);
-  if (ec) {
-    const std::string why = ec.message();
-    fs::remove(fs::u8path(tmp), ec);
-    cannot_write(path, why);
-  }
+  if (status != CAIRO_STATUS_SUCCESS) cannot_write(file.path(), errno ? std::strerror(errno) : cairo_status_to_string(status));
+  const std::string why = file.commit();
+  if (!why.empty()) cannot_write(file.path(), why);
 }
 
 }  // namespace
@@ -691,11 +681,10 @@ DrawingSheetLayout write_drawing_pdf(const DrawingSheetPart& part, const Drawing
   DrawingSheetLayout layout;
   layout.page_width_mm = g.page_w;
   layout.page_height_mm = g.page_h;
-  static std::atomic<unsigned> counter{0};
-  const std::string tmp = path + ".tmp-" + std::to_string(::getpid()) + "-" + std::to_string(counter++);
+  AtomicFile file(path);
   errno = 0;
   std::unique_ptr<cairo_surface_t, decltype(&cairo_surface_destroy)> surface(
-      cairo_pdf_surface_create(tmp.c_str(), g.page_w * kPointsPerMm, g.page_h * kPointsPerMm), cairo_surface_destroy);
+      cairo_pdf_surface_create(file.temp_path().c_str(), g.page_w * kPointsPerMm, g.page_h * kPointsPerMm), cairo_surface_destroy);
   if (cairo_surface_status(surface.get()) != CAIRO_STATUS_SUCCESS)
     cannot_write(path, errno ? std::strerror(errno) : cairo_status_to_string(cairo_surface_status(surface.get())));
   // No creation date (an empty one is left out): the same part gives the same bytes.
@@ -712,13 +701,9 @@ DrawingSheetLayout write_drawing_pdf(const DrawingSheetPart& part, const Drawing
     cairo_font_options_destroy(fo);
     draw_sheet(cr, part, options, g, layout);
     cairo_show_page(cr);
-    if (cairo_status(cr) != CAIRO_STATUS_SUCCESS) {
-      std::error_code ec;
-      fs::remove(fs::u8path(tmp), ec);
-      cannot_write(path, cairo_status_to_string(cairo_status(cr)));
-    }
+    if (cairo_status(cr) != CAIRO_STATUS_SUCCESS) cannot_write(path, cairo_status_to_string(cairo_status(cr)));
   }
-  finish_atomically(surface.get(), tmp, path);
+  finish_atomically(surface.get(), file);
   return layout;
 }
 
