@@ -153,6 +153,50 @@ bool bend_zone_room(const Part& part, const RealisedPart& rp, const SheetSpec& s
   return false;
 }
 
+// The strip of tab i's sheet that child c's bend takes (m, in i's local frame,
+// counter-clockwise): the root, swept SB of that bend into tab i.
+std::vector<Vec2> parent_side_bend_strip(const Part& part, const RealisedPart& rp, const SheetSpec& spec, int i, int c) {
+  const RealisedTab& t = rp.tabs[i];
+  const auto local = [&](const Vec3& q) { return Vec2((q - t.origin).dot(t.x_axis), (q - t.origin).dot(t.y_axis)); };
+  const Vec2 a = local(rp.tabs[c].bend_start()), b = local(rp.tabs[c].bend_end());
+  Vec2 inward(-(b - a).y(), (b - a).x());
+  inward.normalize();
+  if ((polygon_centroid(t.local) - a).dot(inward) < 0) inward = -inward;
+  const Vec2 depth = bend_setback(part.tabs[c].params.theta3, spec) * inward;
+  std::vector<Vec2> strip = {a, b, b + depth, a + depth};
+  if (signed_area(strip) < 0) std::reverse(strip.begin(), strip.end());
+  return strip;
+}
+
+// Two bends on edges of tab i that share no corner (the two sides of a
+// narrow tab) must leave flat sheet between them: where the strips each bend
+// takes out of tab i overlap, the two bends would have to be one curve, which
+// no press brake makes (docs/manufacturing.md "Bends side by side"). Bends
+// on one edge, or on two edges meeting at a corner, are the ordinary case
+// (reliefs, corner notches) and are not checked here.
+bool sibling_bend_room(const Part& part, const RealisedPart& rp, const SheetSpec& spec, int i, Sink& sink) {
+  std::vector<int> bent;
+  for (int c : part.children(i))
+    if (!is_flat_extension(part.tabs[c].params)) bent.push_back(c);
+  const int n = part.edge_count(i);
+  const double tol = sink.options.length_tolerance;
+  for (size_t u = 0; u < bent.size(); ++u)
+    for (size_t v = u + 1; v < bent.size(); ++v) {
+      const int c1 = bent[u], c2 = bent[v];
+      if (!involves(sink.options, c1) && !involves(sink.options, c2)) continue;
+      const int gap = std::abs(part.tabs[c1].parent_edge - part.tabs[c2].parent_edge);
+      if (gap == 0 || gap == 1 || gap == n - 1) continue;
+      const std::vector<Vec2> overlap = clip_convex(inset_convex(parent_side_bend_strip(part, rp, spec, i, c1), tol),
+                                                    inset_convex(parent_side_bend_strip(part, rp, spec, i, c2), tol));
+      const double area = overlap.size() >= 3 ? signed_area(overlap) : 0.0;
+      if (area > 0 && sink.add(ValidityReason::BendZonesOverlap, c2, c1, area,
+                               tab_name(c2) + " bend zone overlaps the bend zone of " + tab_name(c1) + " across " +
+                                   tab_name(i) + " (" + fmt("%.1f mm^2", area * 1e6) + ", no flat sheet between them)"))
+        return true;
+    }
+  return false;
+}
+
 // Tabs that may touch: a tab and its parent (they share the bend), and a
 // self-rivet pair (they overlap by design).
 bool adjacent(const Part& part, int i, int j) {
@@ -176,6 +220,8 @@ ValidityReport check_limits(const Part& part, const RealisedPart& rp, const Shee
   }
   for (int i = 1; i < part.size(); ++i)
     if (bend_zone_room(part, rp, spec, i, sink)) return report;
+  for (int i = 0; i < part.size(); ++i)
+    if (sibling_bend_room(part, rp, spec, i, sink)) return report;
   return report;
 }
 

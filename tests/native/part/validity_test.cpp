@@ -71,6 +71,32 @@ TEST(Validity, BendZonesNeedRoom) {
   EXPECT_TRUE(check_limits(part, realise(part), spec()).valid());
 }
 
+// Bends on the two sides of a 20 mm wide tab each take SB of it: at 90 deg
+// 2 x 7.2 = 14.4 mm leaves 5.6 mm flat; at 120 deg SB = tan(60) (R + t/2) =
+// 12.471 mm each, so the strips overlap 2 SB - 20 = 4.941 mm deep over the
+// 20 mm both roots span. Bends on edges meeting at a corner are not this case.
+TEST(Validity, BendsOnBothSidesOfANarrowTabNeedFlatSheetBetweenThem) {
+  Part part = square_base();
+  const int a = part.add_tab(0, 0, {0.01, 0.02, 0.04, 0, 0, 90 * kDeg});
+  part.add_tab(a, kStartSideEdge, {0.01, 0.02, 0.02, 0, 0, 90 * kDeg});
+  part.add_tab(a, kEndSideEdge, {0.01, 0.02, 0.02, 0, 0, 90 * kDeg});
+  EXPECT_TRUE(check_limits(part, realise(part), spec()).valid()) << check_limits(part, realise(part), spec()).summary();
+  part.tabs[2].params.theta3 = 120 * kDeg;
+  part.tabs[3].params.theta3 = 120 * kDeg;
+  const ValidityReport r = check_limits(part, realise(part), spec());
+  ASSERT_EQ(r.first_reason(), ValidityReason::BendZonesOverlap) << r.summary();
+  EXPECT_EQ(r.violations[0].tab, 3);
+  EXPECT_EQ(r.violations[0].other, 2);
+  const double sb = std::tan(60 * kDeg) * 7.2e-3;
+  EXPECT_NEAR(r.violations[0].value, (2 * sb - 0.02) * 0.02, 1e-3 * (2 * sb - 0.02) * 0.02);
+  EXPECT_NE(r.summary().find("across tab 1"), std::string::npos) << r.summary();
+
+  Part corner = square_base();
+  corner.add_tab(0, 0, {0.02, 0.02, 0.03, 0, 0, 120 * kDeg});  // ends at the corner (40, 0)
+  corner.add_tab(0, 1, {0.0, 0.02, 0.03, 0, 0, 120 * kDeg});   // starts there
+  EXPECT_FALSE(check_limits(corner, realise(corner), spec()).has(ValidityReason::BendZonesOverlap));
+}
+
 // Two flanges bent up on adjacent edges, both reaching the shared corner,
 // touch there (distance 0); moved 5 mm apart along both edges they are
 // sqrt(5^2 + 5^2) = 7.07 mm apart at their nearest corners.
