@@ -147,6 +147,11 @@ def check_part(out_dir, prob, part, fc, failures):
         failures.append(f"{name}: {what}")
 
     part_step, flat_step = os.path.join(folder, "part.step"), os.path.join(folder, "flat.step")
+    if not os.path.exists(part_step):
+        error = os.path.join(folder, "part_step_error.txt")
+        why = open(error).read().strip() if os.path.exists(error) else "and no part_step_error.txt"
+        fail(f"no part.step: {why}")
+        return f"{name}: no part.step"
     vols, masses, box, types, _ = gmsh_read(part_step)
     if len(vols) != 1:
         fail(f"gmsh reads {len(vols)} volumes in part.step")
@@ -234,7 +239,7 @@ def main():
                 continue
             solved.append((name, problem, run))
         files = [os.path.join(run.out_dir, p["load"], f) for _, _, run in solved for p in run.parts
-                 for f in ("part.step", "flat.step")]
+                 for f in ("part.step", "flat.step") if os.path.exists(os.path.join(run.out_dir, p["load"], f))]
         fc = freecad_probe(files)
         for name, problem, run in solved:
             prob = json.load(open(problem))

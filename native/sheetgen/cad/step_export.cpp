@@ -40,12 +40,14 @@
 #include <ShapeFix_Shape.hxx>
 #include <ShapeUpgrade_UnifySameDomain.hxx>
 #include <Standard_Failure.hxx>
+#include <TopExp.hxx>
 #include <TopExp_Explorer.hxx>
 #include <TopoDS.hxx>
 #include <TopoDS_Face.hxx>
 #include <TopoDS_Shell.hxx>
 #include <TopoDS_Solid.hxx>
 #include <TopoDS_Wire.hxx>
+#include <TopTools_IndexedMapOfShape.hxx>
 #include <TopTools_ListOfShape.hxx>
 #include <gp_Ax3.hxx>
 #include <gp_Circ.hxx>
@@ -317,6 +319,32 @@ std::vector<TopoDS_Face> joined_sheets(const std::vector<TopoDS_Face>& faces) {
   return faces_of(unify.Shape());
 }
 
+// One face given to sewing and what it is, to name the faces a failed sewing
+// left apart.
+struct SewnFace {
+  TopoDS_Face face;
+  std::string what;  // "tab 3", "the bend of tab 3"
+};
+
+// "tab 12, the bend of tab 13": the inputs that ended in a shell other than
+// the one with the most faces.
+std::string apart_from_the_rest(const BRepBuilderAPI_Sewing& sew, const std::vector<TopoDS_Shell>& shells,
+                                const std::vector<SewnFace>& inputs) {
+  std::vector<TopTools_IndexedMapOfShape> faces(shells.size());
+  size_t main = 0;
+  for (size_t i = 0; i < shells.size(); ++i) {
+    TopExp::MapShapes(shells[i], TopAbs_FACE, faces[i]);
+    if (faces[i].Extent() > faces[main].Extent()) main = i;
+  }
+  std::string out;
+  for (const SewnFace& in : inputs) {
+    const TopoDS_Shape sewn = sew.IsModified(in.face) ? sew.Modified(in.face) : TopoDS_Shape(in.face);
+    for (size_t i = 0; i < shells.size(); ++i)
+      if (i != main && faces[i].Contains(sewn)) out += (out.empty() ? "" : ", ") + in.what;
+  }
+  return out;
+}
+
 // The part's mid-surface (mm, world) as one shell: the sheet outside the bend
 // zones moved rigidly piece by piece (the sheets of each self-rivet joined),
 // every bend zone wrapped onto its cylinder, sewn along the tangent lines
@@ -327,12 +355,17 @@ TopoDS_Shell mid_surface(const FlatPattern& flat, const std::vector<RivetHole>& 
   const TopoDS_Face sheet = flat_face(flat, holes, Vec2::Zero());
   const std::vector<FlatPieceTransform> maps = fold_transforms(flat);
   BRepBuilderAPI_Sewing sew(o.sewing_tolerance * kMm);
+  std::vector<SewnFace> inputs;
+  const auto add = [&](const TopoDS_Face& f, const std::string& what) {
+    sew.Add(f);
+    inputs.push_back({f, what});
+  };
   TopTools_ListOfShape zones;
   for (const FlatBend& b : flat.bends)
     for (const std::vector<Vec2>& poly : bend_zone_polygons(flat, b)) {
       const TopoDS_Face zone = polygon_face(poly);
       zones.Append(zone);
-      sew.Add(wrap_bend_zone(zone, b, maps[b.parent], o.thickness));
+      add(wrap_bend_zone(zone, b, maps[b.parent], o.thickness), "the bend of tab " + std::to_string(b.tab));
     }
   TopoDS_Shape planar = sheet;
   if (!zones.IsEmpty()) {
@@ -363,15 +396,16 @@ TopoDS_Shell mid_surface(const FlatPattern& flat, const std::vector<RivetHole>& 
     if (group[tab] >= 0)
       grouped[group[tab]].push_back(placed);
     else
-      sew.Add(placed);
+      add(placed, "tab " + std::to_string(tab));
   }
   for (const auto& g : grouped)
-    for (const TopoDS_Face& f : joined_sheets(g.second)) sew.Add(f);
+    for (const TopoDS_Face& f : joined_sheets(g.second)) add(f, "the self-riveted plate " + std::to_string(g.first));
   sew.Perform();
   std::vector<TopoDS_Shell> shells;
   for (TopExp_Explorer x(sew.SewedShape(), TopAbs_SHELL); x.More(); x.Next()) shells.push_back(TopoDS::Shell(x.Current()));
   if (shells.size() != 1)
-    throw StepGeometryError("the bent sheet sewed into " + std::to_string(shells.size()) + " pieces instead of one");
+    throw StepGeometryError("the bent sheet sewed into " + std::to_string(shells.size()) + " pieces instead of one (apart from the rest: " +
+                            apart_from_the_rest(sew, shells, inputs) + ")");
   return shells[0];
 }
 
