@@ -9,7 +9,9 @@
 #   bash scripts/sanitize.sh -L core          # extra arguments go to ctest
 #
 # Environment: SANITIZE_BUILD_DIR, SANITIZE_TARGETS, SANITIZE_OPENVDB (OFF: leave the
-# OpenVDB door uninstrumented; default ON), JOBS (compile jobs; default 2).
+# OpenVDB door uninstrumented; default ON), SANITIZE_DISTANCE_FIELD_OBJECT (with
+# SANITIZE_OPENVDB=OFF: link this uninstrumented distance_field.cpp.o of another
+# build instead of compiling it), JOBS (compile jobs; default 2).
 set -euo pipefail
 ROOT="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 BUILD_DIR="${SANITIZE_BUILD_DIR:-$ROOT/build-sanitize}"
@@ -23,6 +25,7 @@ echo "== configure + build ($BUILD_DIR, ASan + UBSan)"
 # alone in 260 s under ASan from a cold cache (the fast tier's budget is 20 min).
 cmake -S "$ROOT" -B "$BUILD_DIR" -G Ninja -DCMAKE_BUILD_TYPE=None -DCMAKE_CXX_FLAGS="-O1 -g1 -DNDEBUG" -DCMAKE_C_FLAGS="-O1 -g1 -DNDEBUG" \
   -DSHEETGEN_SANITIZE=ON -DSHEETGEN_SANITIZE_OPENVDB="${SANITIZE_OPENVDB:-ON}" \
+  -DSHEETGEN_DISTANCE_FIELD_OBJECT="${SANITIZE_DISTANCE_FIELD_OBJECT:-}" \
   -DSHEETGEN_PYTHON=OFF -DSHEETGEN_BENCH=OFF -DSHEETGEN_TESTS=ON >/dev/null
 # SANITIZE_TARGETS (optional): build only these targets (the test command builds
 # the fast areas' tests; everything by default).

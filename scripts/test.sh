@@ -66,8 +66,10 @@ else
   # exact-contact tests alone take 3 minutes under ASan, and its code is mostly
   # the doors to OpenVDB and Embree. The CLI those tests drive is the Release
   # one (it needs every search area).
-  # The OpenVDB door is compiled uninstrumented here (CMakeLists.txt says why).
+  # The OpenVDB door is uninstrumented here, the Release build's object
+  # (native/sheetgen/env/CMakeLists.txt says why).
   SANITIZE_TARGETS="sheetgen_core_tests sheetgen_part_tests sheetgen_fem_tests" SANITIZE_OPENVDB=OFF \
+  SANITIZE_DISTANCE_FIELD_OBJECT="$BUILD_DIR/native/sheetgen/env/CMakeFiles/sheetgen_env.dir/distance_field.cpp.o" \
   SHEETGEN_CLI="$BUILD_DIR/native/cli/sheetgen" \
     bash "$ROOT/scripts/sanitize.sh" -L "core|part|fem" -LE full </dev/null 2>&1 | tee "$LOGS/sanitize.log"
 fi
