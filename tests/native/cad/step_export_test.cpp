@@ -136,6 +136,17 @@ double closed_form_volume_mm3(const FlatPattern& flat, double thickness_m) {
   return mid_area * t;
 }
 
+// One valid solid, the bend's two cylinders, and the closed-form volume.
+void expect_one_bend_solid_of_closed_form_volume(const FlatPattern& flat) {
+  StepExportOptions o;
+  o.thickness = spec().thickness;
+  const StepSolidReport r = bent_part_solid_report(flat, {}, o);
+  EXPECT_EQ(r.solids, 1);
+  EXPECT_TRUE(r.valid);
+  EXPECT_EQ(r.bend_faces, 2);
+  EXPECT_NEAR(r.volume_mm3, closed_form_volume_mm3(flat, o.thickness), 1e-5 * r.volume_mm3);
+}
+
 TEST(StepExport, ASkewedRootEndingNanometresPastTheCornerIsOneValidSolid) {
   // A 5.1 deg tab from 10 mm to the edge's end, skewed 0.5 deg: unfolding
   // shifts its root along the edge by dL tan(theta2), 66 nm past the corner.
@@ -146,13 +157,7 @@ TEST(StepExport, ASkewedRootEndingNanometresPastTheCornerIsOneValidSolid) {
   const FlatPattern flat = one_tab_flat({0.01, 0.05, 0.03, 0, 0.5 * kDeg, 5.1 * kDeg});
   ASSERT_TRUE(flat.ok()) << flat.message;
   ASSERT_EQ(flat.bends.size(), 1u);
-  StepExportOptions o;
-  o.thickness = spec().thickness;
-  const StepSolidReport r = bent_part_solid_report(flat, {}, o);
-  EXPECT_EQ(r.solids, 1);
-  EXPECT_TRUE(r.valid);
-  EXPECT_EQ(r.bend_faces, 2);
-  EXPECT_NEAR(r.volume_mm3, closed_form_volume_mm3(flat, o.thickness), 1e-5 * r.volume_mm3);
+  expect_one_bend_solid_of_closed_form_volume(flat);
 }
 
 TEST(StepExport, ABendPastTheTangentCrossoverHasTheClosedFormVolume) {
@@ -164,13 +169,7 @@ TEST(StepExport, ABendPastTheTangentCrossoverHasTheClosedFormVolume) {
   ASSERT_TRUE(flat.ok()) << flat.message;
   ASSERT_EQ(flat.bends.size(), 1u);
   ASSERT_LT(flat.bends[0].allowance, flat.bends[0].setback);
-  StepExportOptions o;
-  o.thickness = spec().thickness;
-  const StepSolidReport r = bent_part_solid_report(flat, {}, o);
-  EXPECT_EQ(r.solids, 1);
-  EXPECT_TRUE(r.valid);
-  EXPECT_EQ(r.bend_faces, 2);
-  EXPECT_NEAR(r.volume_mm3, closed_form_volume_mm3(flat, o.thickness), 1e-5 * r.volume_mm3);
+  expect_one_bend_solid_of_closed_form_volume(flat);
 }
 
 TEST(StepExport, AnInvalidFlatPatternIsRefused) {
