@@ -18,18 +18,7 @@ sys.path.insert(0, os.path.join(ROOT, "blender_addon"))
 from sheetgen_blender.core import geometry, jsonio, model  # noqa: E402
 from sheetgen_blender.core.model import Envelope, FactorData, LoadCaseData, LoadData, MeshData, SceneData  # noqa: E402
 from sheetgen_blender.core.problem import ProblemError, problem_to_scene, scene_to_problem  # noqa: E402
-
-
-def native_or_none():
-    build = os.environ.get("SHEETGEN_BUILD_DIR", os.path.join(ROOT, "build"))
-    sys.path.insert(0, os.path.join(build, "python"))
-    try:
-        import _sheetgen_native
-        return _sheetgen_native if hasattr(_sheetgen_native, "part_modes") else None
-    except ImportError:
-        return None
-    finally:
-        sys.path.pop(0)
+from sheetgen_tools.native_module import native_or_none  # noqa: E402
 
 
 def issue_problem():
@@ -262,12 +251,13 @@ class Geometry(unittest.TestCase):
         self.assertEqual(geometry.left_axis([0, -1, 0], [0, 0, 1]), (1.0, 0.0, 0.0))
 
 
-@unittest.skipIf(native_or_none() is None, "native module with part_modes not built (target _sheetgen_native)")
+@unittest.skipIf(native_or_none("part_modes") is None,
+                 "native module with part_modes not built (target _sheetgen_native)")
 class NativeAgrees(unittest.TestCase):
     """The core's output is what the native reader reads, with the cases the format defines."""
 
     def test_preset_cases_are_mass_g0_factor_in_the_aircraft_axes(self):
-        sg = native_or_none()
+        sg = native_or_none("part_modes")
         problem, _ = scene_to_problem(problem_to_scene(issue_problem())[0])
         ld = sg.parse_problem(jsonio.dumps(problem), "core.json", ".").loads[0]
         names = [c.name for c in ld.cases]
@@ -282,7 +272,7 @@ class NativeAgrees(unittest.TestCase):
         self.assertEqual(ld.mass, 2.4)
 
     def test_mass_properties_reach_the_native_load(self):
-        sg = native_or_none()
+        sg = native_or_none("part_modes")
         problem, _ = scene_to_problem(problem_to_scene(factor_list_problem())[0])
         ld = sg.parse_problem(jsonio.dumps(problem), "core.json", ".").loads[0]
         self.assertEqual(list(ld.center_of_mass), [0.31, 0.01, 0.29])
@@ -291,7 +281,7 @@ class NativeAgrees(unittest.TestCase):
         self.assertEqual(ld.cases[1].max_deflection, 3e-3)
 
     def test_native_rejects_the_bad_files_too(self):
-        sg = native_or_none()
+        sg = native_or_none("part_modes")
         for change, expected in BAD_FILES:
             p = issue_problem()
             change(p)

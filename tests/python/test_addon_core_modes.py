@@ -19,20 +19,9 @@ sys.path.insert(0, os.path.join(ROOT, "blender_addon"))
 
 from sheetgen_blender.core import modes as M  # noqa: E402
 from sheetgen_blender.core import result as R  # noqa: E402
+from sheetgen_tools.native_module import native_or_none  # noqa: E402
 
 CORNER = os.path.join(ROOT, "sample_scenes", "corner")
-
-
-def native_or_none():
-    build = os.environ.get("SHEETGEN_BUILD_DIR", os.path.join(ROOT, "build"))
-    sys.path.insert(0, os.path.join(build, "python"))
-    try:
-        import _sheetgen_native
-        return _sheetgen_native if hasattr(_sheetgen_native, "part_modes") else None
-    except ImportError:
-        return None
-    finally:
-        sys.path.pop(0)
 
 
 def envelope_part(buckling=2.1, freqs=(31.0, 48.5, 90.2), required=(True, 1.5, 25.0)):
@@ -140,11 +129,12 @@ def seat_and_flange():
                       "parameters": {"theta3": math.pi / 2}}]}
 
 
-@unittest.skipIf(native_or_none() is None, "native module with part_modes not built (target _sheetgen_native)")
+@unittest.skipIf(native_or_none("part_modes") is None,
+                 "native module with part_modes not built (target _sheetgen_native)")
 class NativePartModes(unittest.TestCase):
     @classmethod
     def setUpClass(cls):
-        cls.sg = native_or_none()
+        cls.sg = native_or_none("part_modes")
         cls.part = json.dumps(seat_and_flange())
         cls.modes = cls.sg.part_modes(corner_problem(cls.sg), 0, cls.part, "hand-made")
 

@@ -16,18 +16,7 @@ sys.path.insert(0, os.path.join(ROOT, "blender_addon"))
 from sheetgen_blender.core import jsonio, model  # noqa: E402
 from sheetgen_blender.core.model import LoadData, MeshData, SceneData  # noqa: E402
 from sheetgen_blender.core.problem import ProblemError, problem_to_scene, scene_to_problem  # noqa: E402
-
-
-def native_or_none():
-    build = os.environ.get("SHEETGEN_BUILD_DIR", os.path.join(ROOT, "build"))
-    sys.path.insert(0, os.path.join(build, "python"))
-    try:
-        import _sheetgen_native
-        return _sheetgen_native
-    except ImportError:
-        return None
-    finally:
-        sys.path.pop(0)
+from sheetgen_tools.native_module import native_or_none  # noqa: E402
 
 
 def two_meshes():
