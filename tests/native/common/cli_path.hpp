@@ -1,5 +1,8 @@
 #pragma once
-// Where the tests find the `sheetgen` command line they drive.
+// Where the tests find the `sheetgen` command line they drive, and how they run it.
+#include <sys/wait.h>
+
+#include <cstdio>
 #include <cstdlib>
 #include <string>
 
@@ -12,6 +15,25 @@ namespace sheetgen::testing {
 inline std::string sheetgen_cli() {
   if (const char* path = std::getenv("SHEETGEN_CLI"); path && *path) return path;
   return std::string(SHEETGEN_BINARY_DIR) + "/native/cli/sheetgen";
+}
+
+// What a run of the CLI gave: its exit code (-1 when it did not exit) and
+// what reached the pipe.
+struct CliRun {
+  int exit_code = -1;
+  std::string output;
+};
+
+// Runs `sheetgen <args>` through the shell. `args` carries the redirections
+// that choose what reaches the pipe (" 2>&1", " 2>&1 >/dev/null", ...).
+inline CliRun run_cli(const std::string& args) {
+  FILE* pipe = popen((sheetgen_cli() + " " + args).c_str(), "r");
+  CliRun run;
+  char buf[4096];
+  while (pipe && fgets(buf, sizeof buf, pipe)) run.output += buf;
+  const int status = pipe ? pclose(pipe) : -1;
+  run.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  return run;
 }
 
 }  // namespace sheetgen::testing

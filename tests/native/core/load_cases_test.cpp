@@ -9,12 +9,10 @@
 
 #include <Eigen/Eigenvalues>
 #include <cmath>
-#include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <functional>
 #include <nlohmann/json.hpp>
-#include <sys/wait.h>
 #include <unistd.h>
 
 #include "sheetgen/core/input_error.hpp"
@@ -69,14 +67,8 @@ struct Scratch {
 };
 
 // Runs the real CLI's check; exit code and stdout (or stderr with `errors`).
-std::pair<int, std::string> run_check(const std::string& path, bool errors) {
-  const std::string redirect = errors ? " 2>&1 >/dev/null" : " 2>/dev/null";
-  FILE* pipe = popen((sheetgen::testing::sheetgen_cli() + " check '" + path + "'" + redirect).c_str(), "r");
-  std::string out;
-  char buf[4096];
-  while (pipe && fgets(buf, sizeof buf, pipe)) out += buf;
-  const int status = pipe ? pclose(pipe) : -1;
-  return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, out};
+testing::CliRun run_check(const std::string& path, bool errors) {
+  return testing::run_cli("check '" + path + "'" + (errors ? " 2>&1 >/dev/null" : " 2>/dev/null"));
 }
 
 // The six cases of FAR/CS 25.561(b)(3) with forward = +y and up = +z, so that

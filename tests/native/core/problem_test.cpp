@@ -5,11 +5,10 @@
 
 #include <gtest/gtest.h>
 
-#include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
-#include <sys/wait.h>
+#include <unistd.h>
 
 #include "sheetgen/core/input_error.hpp"
 #include "../common/cli_path.hpp"
@@ -53,14 +52,8 @@ struct Files {
 };
 
 // Runs the real CLI; returns exit code and the first line of stderr.
-std::pair<int, std::string> run_check(const std::string& path) {
-  const std::string cmd = sheetgen::testing::sheetgen_cli() + " check '" + path + "' 2>&1 >/dev/null";
-  FILE* pipe = popen(cmd.c_str(), "r");
-  std::string out;
-  char buf[4096];
-  while (pipe && fgets(buf, sizeof buf, pipe)) out += buf;
-  const int status = pipe ? pclose(pipe) : -1;
-  return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, out};
+testing::CliRun run_check(const std::string& path) {
+  return testing::run_cli("check '" + path + "' 2>&1 >/dev/null");
 }
 
 TEST(Problem, ValidProblemGetsDocumentedDefaults) {
@@ -80,7 +73,7 @@ TEST(Problem, ValidProblemGetsDocumentedDefaults) {
   EXPECT_EQ(p.search.chains, 10);
   EXPECT_EQ(p.search.iterations, 1000);
   EXPECT_TRUE(p.loads[0].rotation.isApprox(Eigen::Quaterniond::Identity()));
-  EXPECT_EQ(run_check(path).first, 0);
+  EXPECT_EQ(run_check(path).exit_code, 0);
 }
 
 struct BadCase {

@@ -1,7 +1,7 @@
 // `sheetgen export-ccx` writes exactly the deck of the in-process model, and
 // bad requests are one line with exit code 1.
 #include <gtest/gtest.h>
-#include <sys/wait.h>
+#include <unistd.h>
 
 #include <array>
 #include <cstdio>
@@ -22,15 +22,8 @@ namespace {
 
 namespace fs = std::filesystem;
 
-std::pair<int, std::string> run(const std::string& args) {
-  const std::string cmd = sheetgen::testing::sheetgen_cli() + " " + args + " 2>&1";
-  FILE* pipe = popen(cmd.c_str(), "r");
-  std::string out;
-  char buf[4096];
-  while (pipe && fgets(buf, sizeof buf, pipe)) out += buf;
-  const int status = pipe ? pclose(pipe) : -1;
-  return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, out};
-}
+// Exit code and both output streams.
+testing::CliRun run(const std::string& args) { return testing::run_cli(args + " 2>&1"); }
 
 using testing::slurp;
 
