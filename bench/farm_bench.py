@@ -34,21 +34,9 @@ from sheetgen_tools import paths, runner
 from sheetgen_tools.farm import plan as farm_plan
 
 
-def strip_timing(doc, out_dir):
-    def strip(x):
-        if isinstance(x, dict):
-            return {k: strip(v) for k, v in x.items() if k not in ("timing", "threads") and not k.endswith("_s")}
-        if isinstance(x, list):
-            return [strip(v) for v in x]
-        return x
-    doc = strip(doc)
-    doc["problem"] = os.path.normpath(os.path.join(out_dir, doc["problem"]))
-    return doc
-
-
 def result_of(out_dir):
     with open(os.path.join(out_dir, "result.json")) as f:
-        return strip_timing(json.load(f), out_dir)
+        return runner.strip_timing(json.load(f), out_dir)
 
 
 def folder_mb(path):

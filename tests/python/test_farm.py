@@ -63,18 +63,6 @@ class Checks:
         return ok
 
 
-def strip_timing(doc, out_dir):
-    def strip(x):
-        if isinstance(x, dict):
-            return {k: strip(v) for k, v in x.items() if k not in ("timing", "threads") and not k.endswith("_s")}
-        if isinstance(x, list):
-            return [strip(v) for v in x]
-        return x
-    doc = strip(doc)
-    doc["problem"] = os.path.normpath(os.path.join(out_dir, doc["problem"]))
-    return doc
-
-
 def answer(out_dir):
     """(result.json timing aside, {load: flat.dxf text})."""
     with open(os.path.join(out_dir, "result.json")) as f:
@@ -85,7 +73,7 @@ def answer(out_dir):
         if os.path.exists(path):
             with open(path) as f:
                 dxf[part["load"]] = f.read()
-    return strip_timing(doc, out_dir), dxf
+    return runner.strip_timing(doc, out_dir), dxf
 
 
 def serial_answers(problems, search, sheetgen, root):

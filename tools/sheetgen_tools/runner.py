@@ -108,3 +108,18 @@ def solve(problem, out_dir=None, options=None):
     return SolveRun(problem=problem, out_dir=out_dir, command=cmd, exit_code=code, wall_s=wall,
                     cpu_s=usage.ru_utime + usage.ru_stime, peak_rss_mb=usage.ru_maxrss / 1024.0,
                     stdout=stdout, stderr=stderr, result=result)
+
+
+def strip_timing(doc, out_dir):
+    """result.json `doc` without what differs between equal runs (timing, threads,
+    every "*_s" field) and with its problem path made absolute against `out_dir`,
+    so that runs on other machines or thread counts compare equal."""
+    def strip(x):
+        if isinstance(x, dict):
+            return {k: strip(v) for k, v in x.items() if k not in ("timing", "threads") and not k.endswith("_s")}
+        if isinstance(x, list):
+            return [strip(v) for v in x]
+        return x
+    doc = strip(doc)
+    doc["problem"] = os.path.normpath(os.path.join(out_dir, doc["problem"]))
+    return doc
