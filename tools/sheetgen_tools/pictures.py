@@ -114,15 +114,20 @@ def grid_fig(n, w=4.0, h=3.4):
     return fig, list(axes.flat[:n])
 
 
+def parts_fig(n, cell, single):
+    """(fig, one axes per part): grid_fig's grid of `cell` (w, h) in cells for
+    several parts, one axes of `single` (w, h) in for one part (or none)."""
+    if n > 1:
+        return grid_fig(n, *cell)
+    fig, ax = plt.subplots(1, 1, figsize=single)
+    return fig, [ax]
+
+
 def flat_picture(result, path):
     parts = [p for p in result["parts"] if p["status"] == "ok"]
     if not parts:
         return False
-    if len(parts) > 1:
-        fig, axes = grid_fig(len(parts), 4.2, 3.6)
-    else:
-        fig, ax = plt.subplots(1, 1, figsize=(6, 4.6))
-        axes = [ax]
+    fig, axes = parts_fig(len(parts), (4.2, 3.6), (6, 4.6))
     for ax, p in zip(axes, parts):
         draw_flat(ax, p)
     fig.suptitle("flat patterns (cut outline; bend lines dashed: blue up, red down; number: order)", fontsize=9)
@@ -134,11 +139,7 @@ def flat_picture(result, path):
 
 def convergence_picture(result, path):
     parts = result["parts"]
-    if len(parts) > 1:
-        fig, axes = grid_fig(len(parts), 3.8, 2.8)
-    else:
-        fig, ax = plt.subplots(1, 1, figsize=(5.5, 3.4))
-        axes = [ax]
+    fig, axes = parts_fig(len(parts), (3.8, 2.8), (5.5, 3.4))
     for ax, p in zip(axes, parts):
         hist = p.get("history", [])
         ev = [h["evaluated"] for h in hist if h["found"]]
