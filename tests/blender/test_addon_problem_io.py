@@ -51,7 +51,8 @@ def export(path):
         return result, json.load(f)
 
 
-class ProblemRoundTrip(unittest.TestCase):
+class SceneAndFolder(unittest.TestCase):
+    """Each test starts from a clean scene and gets its own temporary folder."""
     def setUp(self):
         clean_scene()
         self.tmp = tempfile.TemporaryDirectory()
@@ -63,6 +64,8 @@ class ProblemRoundTrip(unittest.TestCase):
     def path(self, name):
         return os.path.join(self.tmp.name, name)
 
+
+class ProblemRoundTrip(SceneAndFolder):
     def assertProblemsEqual(self, got, want):
         for mg, mw in zip(got["environment"]["meshes"], want["environment"]["meshes"]):
             self.assertEqual(mg["name"], mw["name"])
@@ -133,15 +136,7 @@ class ProblemRoundTrip(unittest.TestCase):
                          {ra["name"]: sorted(ra["faces"]) for ra in original["rivet_areas"]})
 
 
-class Reports(unittest.TestCase):
-    def setUp(self):
-        clean_scene()
-        self.tmp = tempfile.TemporaryDirectory()
-
-    def tearDown(self):
-        object_mode()
-        self.tmp.cleanup()
-
+class Reports(SceneAndFolder):
     def test_no_rivet_area_is_a_report_and_writes_nothing(self):
         triangle_grid("floor", 2)
         make_box_load()

@@ -34,18 +34,24 @@ class Names(unittest.TestCase):
         self.assertEqual(plan.output_name("/x/corner/problem.json"), "corner")
 
 
-class Plan(unittest.TestCase):
+class FarmFolder(unittest.TestCase):
+    """Each test gets a temporary folder `root` with an empty output folder `out` in it."""
     def setUp(self):
         self.tmp = tempfile.TemporaryDirectory()
         self.root = self.tmp.name
         self.out = os.path.join(self.root, "out")
         os.makedirs(self.out)
-        self.problem = write(os.path.join(self.root, "p", "corner", "problem.json"), PROBLEM)
-        self.mesh = write(os.path.join(self.root, "p", "corner", "wall.obj"), "v 0 0 0\n")
-        self.solve = runner.SolveOptions(threads=1, chains=2)
 
     def tearDown(self):
         self.tmp.cleanup()
+
+
+class Plan(FarmFolder):
+    def setUp(self):
+        super().setUp()
+        self.problem = write(os.path.join(self.root, "p", "corner", "problem.json"), PROBLEM)
+        self.mesh = write(os.path.join(self.root, "p", "corner", "wall.obj"), "v 0 0 0\n")
+        self.solve = runner.SolveOptions(threads=1, chains=2)
 
     def finish(self, **changes):
         """A farm.json as a solved task of an earlier run leaves it."""
@@ -120,17 +126,11 @@ FAKE_SHEETGEN = textwrap.dedent("""\
     """)
 
 
-class Tasks(unittest.TestCase):
+class Tasks(FarmFolder):
     def setUp(self):
-        self.tmp = tempfile.TemporaryDirectory()
-        self.root = self.tmp.name
-        self.out = os.path.join(self.root, "out")
-        os.makedirs(self.out)
+        super().setUp()
         self.sheetgen = write(os.path.join(self.root, "sheetgen"), FAKE_SHEETGEN)
         os.chmod(self.sheetgen, stat.S_IRWXU)
-
-    def tearDown(self):
-        self.tmp.cleanup()
 
     def task(self, mode, run_id="run1", timeout_s=None):
         problem = write(os.path.join(self.root, mode + ".json"), mode)
