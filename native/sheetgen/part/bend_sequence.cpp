@@ -5,7 +5,9 @@
 #include <cstdio>
 #include <functional>
 #include <stdexcept>
+#include <string>
 #include <unordered_set>
+#include <utility>
 
 #include "sheetgen/core/polygon_geometry.hpp"
 
@@ -101,6 +103,14 @@ std::string describe(const BendCollision& c) {
   return buf;
 }
 
+// `r` failed at `hit`: its message is "<what>: <the collision>".
+BendSequenceResult failed(BendSequenceResult r, const BendCollision& hit, const std::string& what) {
+  r.status = ValidityReason::NoBendSequence;
+  r.collision = hit;
+  r.message = what + ": " + describe(hit);
+  return r;
+}
+
 }  // namespace
 
 BendSequenceResult check_bend_order(const Part& part, const std::vector<int>& order, const SheetSpec& spec,
@@ -117,20 +127,10 @@ BendSequenceResult check_bend_order(const Part& part, const std::vector<int>& or
   BendSequenceResult r;
   Simulator sim(part, spec, o);
   BendCollision hit;
-  if (!sim.state_clear(hit)) {
-    r.status = ValidityReason::NoBendSequence;
-    r.collision = hit;
-    r.message = "the flat sheet already collides: " + describe(hit);
-    return r;
-  }
+  if (!sim.state_clear(hit)) return failed(std::move(r), hit, "the flat sheet already collides");
   for (int k : order) {
     ++r.sweeps;
-    if (!sim.sweep(k, hit)) {
-      r.status = ValidityReason::NoBendSequence;
-      r.collision = hit;
-      r.message = "bend order fails: " + describe(hit);
-      return r;
-    }
+    if (!sim.sweep(k, hit)) return failed(std::move(r), hit, "bend order fails");
     r.order.push_back(k);
   }
   return r;
@@ -141,12 +141,7 @@ BendSequenceResult plan_bend_sequence(const Part& part, const SheetSpec& spec, c
   BendSequenceResult r;
   Simulator sim(part, spec, o);
   BendCollision hit;
-  if (!sim.state_clear(hit)) {
-    r.status = ValidityReason::NoBendSequence;
-    r.collision = hit;
-    r.message = "no bend sequence: " + describe(hit);
-    return r;
-  }
+  if (!sim.state_clear(hit)) return failed(std::move(r), hit, "no bend sequence");
   std::vector<int> candidates;
   for (int i = 1; i < n; ++i)
     if (!is_flat_extension(part.tabs[i].params)) candidates.push_back(i);  // a flat extension is not bent
