@@ -12,18 +12,14 @@
 #include "sheetgen/part/bend_sequence.hpp"
 #include "sheetgen/part/flat_pattern.hpp"
 #include "sheetgen/part/validity.hpp"
+#include "../tests/native/common/scene_fixture.hpp"
 
 namespace {
 
 using namespace sheetgen;
 const double kDeg = M_PI / 180.0;
 
-TriangleMesh rectangle(double x0, double x1, double y0, double y1, double z) {
-  TriangleMesh m;
-  m.vertices = {Vec3(x0, y0, z), Vec3(x1, y0, z), Vec3(x1, y1, z), Vec3(x0, y1, z)};
-  m.triangles = {{0, 1, 2}, {0, 2, 3}};
-  return m;
-}
+using testing_scenes::rectangle;
 
 // Scene: a 120 x 120 x 40 mm load whose base tab is at z = 0, a floor 200 mm
 // below, a wall at x = 300 mm. Defaults of docs/architecture.md for t = 1.6 mm.

@@ -3,8 +3,8 @@
 
 #include <cmath>
 
-#include "scene_fixture.hpp"
 #include "sheetgen/discovery/segment_library.hpp"
+#include "../common/scene_fixture.hpp"
 
 namespace sheetgen {
 namespace {

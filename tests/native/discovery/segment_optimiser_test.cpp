@@ -3,10 +3,10 @@
 
 #include <cmath>
 
-#include "scene_fixture.hpp"
 #include "sheetgen/discovery/segment_optimiser.hpp"
 #include "sheetgen/env/environment.hpp"
 #include "sheetgen/part/validity.hpp"
+#include "../common/scene_fixture.hpp"
 #include "../common/sheet_fixture.hpp"
 
 namespace sheetgen {
@@ -24,14 +24,20 @@ Problem wall_problem() {
 
 RivetPlane wall_plane() { return {0, Vec3(-0.2, 0, 0), Vec3(1, 0, 0)}; }
 
-TEST(SegmentOptimiser, ContractionShortensZigZagAndStaysValid) {
-  const Problem problem = wall_problem();
-  const Environment env(problem);
-  const SheetSpec spec = SheetSpec::from(problem);
+// A segment to the wall that holds only the base tab so far; each test adds its own feeler tabs.
+SegmentWork wall_segment(const Problem& problem, const SheetSpec& spec) {
   SegmentWork w;
   w.plane = wall_plane();
   w.part = make_base_part(problem.loads[0], 0, spec.thickness);
   w.first = 1;
+  return w;
+}
+
+TEST(SegmentOptimiser, ContractionShortensZigZagAndStaysValid) {
+  const Problem problem = wall_problem();
+  const Environment env(problem);
+  const SheetSpec spec = SheetSpec::from(problem);
+  SegmentWork w = wall_segment(problem, spec);
   // Zig-zag from base edge 3 (the -x side): up 30 deg for 60 mm, then down 60 deg to the wall.
   const int a = w.part.add_tab(0, 3, {0.012, 0.016, 0.06, 0, 0, 30 * kDeg});
   const int b = w.part.add_tab(a, kFarEdge, {0.0, 0.016, 0.05, 0, 0, -60 * kDeg});
@@ -65,10 +71,7 @@ TEST(SegmentOptimiser, ZigZagBecomesShortAndWide) {
   const Problem problem = wall_problem();
   const Environment env(problem);
   const SheetSpec spec = SheetSpec::from(problem);
-  SegmentWork w;
-  w.plane = wall_plane();
-  w.part = make_base_part(problem.loads[0], 0, spec.thickness);
-  w.first = 1;
+  SegmentWork w = wall_segment(problem, spec);
   // From base edge 3 (x = 0, y 0..40 mm): up 40 deg for 80 mm, down 80 deg for 60 mm, up 50 deg to the wall.
   const int a = w.part.add_tab(0, 3, {0.012, 0.016, 0.08, 0, 0, 40 * kDeg});
   const int b = w.part.add_tab(a, kFarEdge, {0.0, 0.016, 0.06, 0, 0, -80 * kDeg});
@@ -110,10 +113,7 @@ TEST(SegmentOptimiser, WideningStopsAtAWall) {
   problem.meshes.push_back({"plate", quad(Vec3(-0.15, 0.032, -0.2), Vec3(0.145, 0, 0), Vec3(0, 0, 0.25)), "<inline>"});
   const Environment env(problem);
   const SheetSpec spec = SheetSpec::from(problem);
-  SegmentWork w;
-  w.plane = wall_plane();
-  w.part = make_base_part(problem.loads[0], 0, spec.thickness);
-  w.first = 1;
+  SegmentWork w = wall_segment(problem, spec);
   // Base edge 3 runs from (0, 40) to (0, 0) mm: d = 12 mm puts the tab at y 12..28 mm.
   const int a = w.part.add_tab(0, 3, {0.012, 0.016, 0.05, 0, 0, -30 * kDeg});
   w.flange = attach_flange(w.part, a, w.plane, spec);

@@ -3,9 +3,9 @@
 
 #include <cmath>
 
-#include "scene_fixture.hpp"
 #include "sheetgen/discovery/target.hpp"
 #include "sheetgen/env/environment.hpp"
+#include "../common/scene_fixture.hpp"
 #include "../common/sheet_fixture.hpp"
 
 namespace sheetgen {

@@ -7,12 +7,12 @@
 
 #include <cmath>
 
-#include "scene_fixture.hpp"
 #include "sheetgen/discovery/discovery.hpp"
 #include "sheetgen/env/environment.hpp"
 #include "sheetgen/part/flat_pattern.hpp"
 #include "sheetgen/part/realisation.hpp"
 #include "sheetgen/part/validity.hpp"
+#include "../common/scene_fixture.hpp"
 
 namespace sheetgen {
 namespace {

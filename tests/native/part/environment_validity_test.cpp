@@ -7,6 +7,7 @@
 #include "sheetgen/env/environment.hpp"
 #include "sheetgen/part/rivet_flange.hpp"
 #include "sheetgen/part/validity.hpp"
+#include "../common/scene_fixture.hpp"
 #include "../common/sheet_fixture.hpp"
 
 namespace sheetgen {
@@ -15,32 +16,10 @@ namespace {
 using fixtures::kDeg;
 constexpr double kT = 1.6e-3;
 
-Manufacturing manufacturing() { return fixtures::aluminium_manufacturing_1_6mm(); }
-
-// Horizontal rectangle at height z, normal +z, two triangles.
-TriangleMesh rectangle(double x0, double x1, double y0, double y1, double z) {
-  TriangleMesh m;
-  m.vertices = {Vec3(x0, y0, z), Vec3(x1, y0, z), Vec3(x1, y1, z), Vec3(x0, y1, z)};
-  m.triangles = {{0, 1, 2}, {0, 2, 3}};
-  return m;
-}
-
 // Load: 40 x 40 x 20 mm box whose bottom is at z = t/2, so the base tab is
-// the square (0,0)-(40,40) mm at z = 0.
-Problem base_problem() {
-  Problem p;
-  p.source = "<test>";
-  p.material.thickness = kT;
-  p.requirements.clearance = 1e-3;
-  p.manufacturing = manufacturing();
-  Load load;
-  load.name = "box";
-  load.center = Vec3(0.02, 0.02, 0.0108);
-  load.size = Vec3(0.04, 0.04, 0.02);
-  load.force = Vec3(0, 0, -100);
-  p.loads.push_back(load);
-  return p;
-}
+// the square (0,0)-(40,40) mm at z = 0; the sheet is kT thick.
+using testing_scenes::base_problem;
+using testing_scenes::rectangle;
 
 // A tab on edge 0 bent down 90 deg: plane y = 0, x 10..30 mm, z 0..-l.
 Part down_tab(const Problem& problem, double l) {

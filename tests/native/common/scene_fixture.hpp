@@ -1,8 +1,8 @@
 #pragma once
-// Small scenes assembled in code for the discovery unit tests.
+// Small scenes assembled in code for the discovery and part tests and the part bench.
 #include "sheetgen/core/problem.hpp"
 
-#include "../common/sheet_fixture.hpp"
+#include "sheet_fixture.hpp"
 
 namespace sheetgen::testing_scenes {
 
@@ -12,6 +12,14 @@ inline Manufacturing manufacturing() { return fixtures::aluminium_manufacturing_
 inline TriangleMesh quad(const Vec3& o, const Vec3& u, const Vec3& v) {
   TriangleMesh m;
   m.vertices = {o, o + u, o + u + v, o + v};
+  m.triangles = {{0, 1, 2}, {0, 2, 3}};
+  return m;
+}
+
+// Horizontal rectangle (x0..x1, y0..y1) m at height z m, normal +z, two triangles.
+inline TriangleMesh rectangle(double x0, double x1, double y0, double y1, double z) {
+  TriangleMesh m;  // corners written out rather than through quad(): x0 + (x1 - x0) need not round to x1
+  m.vertices = {Vec3(x0, y0, z), Vec3(x1, y0, z), Vec3(x1, y1, z), Vec3(x0, y1, z)};
   m.triangles = {{0, 1, 2}, {0, 2, 3}};
   return m;
 }
