@@ -19,7 +19,7 @@ import unittest
 
 import numpy as np
 
-from sheetgen_tools import solid_reference
+from sheetgen_tools import s8r_grid, solid_reference
 
 T, E, NU = 1.6e-3, 73.1e9, 0.33
 H = solid_reference.DEFAULT_SIZE * T
@@ -43,14 +43,7 @@ def s8r_folded_strip(path, L1, L2, b, h, P):
             lines.append("%d, %.12g, %.12g, %.12g" % ((node(i, j),) + p))
     ref = len(s) * len(y) + 1
     lines += ["%d, %.12g, %.12g, %.12g" % (k, L1, b / 2, -L2) for k in (ref, ref + 1)]
-    lines.append("*ELEMENT, TYPE=S8R, ELSET=EALL")
-    e = 0
-    for i in range(0, len(s) - 1, 2):
-        for j in range(0, len(y) - 1, 2):
-            e += 1
-            q = [node(i, j), node(i + 2, j), node(i + 2, j + 2), node(i, j + 2),
-                 node(i + 1, j), node(i + 2, j + 1), node(i + 1, j + 2), node(i, j + 1)]
-            lines.append("%d, " % e + ", ".join(map(str, q)))
+    lines += s8r_grid.s8r_elements(len(s), len(y), node)
     lines += ["*MATERIAL, NAME=M", "*ELASTIC", "%.12g, %.12g" % (E, NU), "*SHELL SECTION, ELSET=EALL, MATERIAL=M",
               "%.12g" % T, "*NSET, NSET=TIP"] + ["%d," % node(len(s) - 1, j) for j in range(len(y))]
     lines += ["*RIGID BODY, NSET=TIP, REF NODE=%d, ROT NODE=%d" % (ref, ref + 1), "*STEP", "*STATIC", "*BOUNDARY"]

@@ -31,7 +31,7 @@ import unittest
 
 import numpy as np
 
-from sheetgen_tools import ccx_check, ccx_deck, runner
+from sheetgen_tools import ccx_check, ccx_deck, runner, s8r_grid
 from sheetgen_tools.findings import Findings
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
@@ -56,14 +56,7 @@ def strip_deck(cases, h=2.5e-3):
                                     for j, y in enumerate(ys)]
     ref = len(xs) * len(ys) + 1
     lines += [f"{k}, {L:.12g}, {B / 2:.12g}, 0" for k in (ref, ref + 1)]
-    lines.append("*ELEMENT, TYPE=S8R, ELSET=EALL")
-    e = 0
-    for i in range(0, len(xs) - 1, 2):
-        for j in range(0, len(ys) - 1, 2):
-            e += 1
-            q = [node(i, j), node(i + 2, j), node(i + 2, j + 2), node(i, j + 2),
-                 node(i + 1, j), node(i + 2, j + 1), node(i + 1, j + 2), node(i, j + 1)]
-            lines.append(f"{e}, " + ", ".join(map(str, q)))
+    lines += s8r_grid.s8r_elements(len(xs), len(ys), node)
     lines += ["*MATERIAL, NAME=SHEET", "*ELASTIC", f"{E:.12g}, 0", "*DENSITY", f"{RHO:.12g}",
               "*SHELL SECTION, ELSET=EALL, MATERIAL=SHEET", f"{T:.12g}", "*NSET, NSET=RIGID1"]
     lines += [f"{node(len(xs) - 1, j)}," for j in range(len(ys))]
