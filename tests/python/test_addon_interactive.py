@@ -95,11 +95,12 @@ def tags(obj):
 def inside(build_dir, out_dir):
     import time
     import traceback
-    import bmesh
     import bpy
     sys.path.insert(0, os.path.join(ROOT, "tools"))
     from sheetgen_tools import addon_loader
     addon_loader.enable_addon(build_dir)
+    sys.path.insert(0, os.path.join(ROOT, "tests", "blender"))
+    from test_addon_support import activate, edit_select_faces
     from sheetgen_blender import generate, panels
     facts = {"screenshots": []}
     drawn = {"t": 0.0}
@@ -131,11 +132,13 @@ def inside(build_dir, out_dir):
         window.event_simulate(type='LEFTMOUSE', value='PRESS', x=x, y=y)
         window.event_simulate(type='LEFTMOUSE', value='RELEASE', x=x, y=y)
 
-    def activate(obj):
-        for o in bpy.context.view_layer.objects:
-            o.select_set(False)
-        bpy.context.view_layer.objects.active = obj
-        obj.select_set(True)
+    def ctrl_c(window, x, y):
+        """Ctrl+C with the mouse at (x, y): over an operator button it copies its Python command.
+        Blender takes the modifier state from the modifier keys' own events."""
+        window.event_simulate(type='LEFT_CTRL', value='PRESS', x=x, y=y)
+        window.event_simulate(type='C', value='PRESS', x=x, y=y, ctrl=True)
+        window.event_simulate(type='C', value='RELEASE', x=x, y=y, ctrl=True)
+        window.event_simulate(type='LEFT_CTRL', value='RELEASE', x=x, y=y)
 
     def find_generate():
         """Mouse over the sidebar row by row from the top; Ctrl+C over an operator button copies its Python
@@ -148,16 +151,22 @@ def inside(build_dir, out_dir):
             bpy.context.window_manager.clipboard = ""
             window.event_simulate(type='MOUSEMOVE', value='NOTHING', x=x, y=y)
             yield 0.02
-            # Blender takes the modifier state from the modifier keys' own events
-            window.event_simulate(type='LEFT_CTRL', value='PRESS', x=x, y=y)
-            window.event_simulate(type='C', value='PRESS', x=x, y=y, ctrl=True)
-            window.event_simulate(type='C', value='RELEASE', x=x, y=y, ctrl=True)
-            window.event_simulate(type='LEFT_CTRL', value='RELEASE', x=x, y=y)
+            ctrl_c(window, x, y)
             yield 0.05
             if bpy.context.window_manager.clipboard.startswith("bpy.ops.sheetgen.generate("):
                 facts["generate_button"] = [x, y]
                 return
         raise RuntimeError("no Generate button found in the sidebar")
+
+    def click_generate(window):
+        """Clicks the Generate button found by find_generate(); (the run it started or None after 5 s,
+        the time of the click)."""
+        x, y = facts["generate_button"]
+        click(window, x, y)
+        t0 = time.monotonic()
+        while generate.active_run() is None and time.monotonic() - t0 < 5:
+            yield 0.02
+        return generate.active_run(), t0
 
     def script():
         yield 1.0
@@ -195,17 +204,7 @@ def inside(build_dir, out_dir):
         todo = [(obj, name, faces) for obj in meshes for name, faces in facts["tags_sample"][obj.name].items()]
         for k, (obj, name, faces) in enumerate(todo):
             with override():
-                activate(obj)
-                bpy.ops.object.mode_set(mode='EDIT')
-                bpy.ops.mesh.select_mode(type='FACE')
-                bm = bmesh.from_edit_mesh(obj.data)
-                bm.faces.ensure_lookup_table()
-                for f in bm.faces:
-                    f.select_set(False)
-                for i in faces:
-                    bm.faces[i].select_set(True)
-                bm.select_flush_mode()
-                bmesh.update_edit_mesh(obj.data)
+                edit_select_faces(obj, faces)
                 assert bpy.ops.sheetgen.rivet_area_add(name=name) == {'FINISHED'}
                 assert bpy.ops.sheetgen.rivet_area_mark() == {'FINISHED'}
             yield 0.2
@@ -224,12 +223,7 @@ def inside(build_dir, out_dir):
         yield 0.3
         yield from find_generate()
         # Run 1: click Generate, read what the modal shows until the run is built.
-        x, y = facts["generate_button"]
-        click(window, x, y)
-        t0 = time.monotonic()
-        while generate.active_run() is None and time.monotonic() - t0 < 5:
-            yield 0.02
-        run = generate.active_run()
+        run, t0 = yield from click_generate(window)
         facts["run1_started_s"] = time.monotonic() - t0 if run is not None else None
         if run is None:
             raise RuntimeError("clicking Generate started no run")
@@ -260,12 +254,7 @@ def inside(build_dir, out_dir):
             setattr(scene.sheetgen, k, v)
         yield 0.5
         facts["state_before"] = scene_state()
-        x, y = facts["generate_button"]
-        click(window, x, y)
-        t0 = time.monotonic()
-        while generate.active_run() is None and time.monotonic() - t0 < 5:
-            yield 0.02
-        run = generate.active_run()
+        run, t0 = yield from click_generate(window)
         if run is None:
             raise RuntimeError("the second click on Generate started no run")
         while (run.shown is None or run.shown[0] < 5) and generate.active_run() is run:
@@ -273,6 +262,7 @@ def inside(build_dir, out_dir):
         screenshot("4_before_esc")
         facts["run2_shown_at_esc"] = run.shown
         facts["run2_stage_at_esc"] = run.progress.stage
+        x, y = facts["generate_button"]       # Esc with the mouse where it clicked
         window.event_simulate(type='ESC', value='PRESS', x=x, y=y)
         window.event_simulate(type='ESC', value='RELEASE', x=x, y=y)
         t_esc = time.monotonic()
@@ -291,10 +281,7 @@ def inside(build_dir, out_dir):
         x, y = facts["generate_button"]
         window.event_simulate(type='MOUSEMOVE', value='NOTHING', x=x, y=y)
         yield 0.05
-        window.event_simulate(type='LEFT_CTRL', value='PRESS', x=x, y=y)
-        window.event_simulate(type='C', value='PRESS', x=x, y=y, ctrl=True)
-        window.event_simulate(type='C', value='RELEASE', x=x, y=y, ctrl=True)
-        window.event_simulate(type='LEFT_CTRL', value='RELEASE', x=x, y=y)
+        ctrl_c(window, x, y)
         yield 0.1
         facts["button_after_cancel"] = bpy.context.window_manager.clipboard
 
