@@ -267,7 +267,7 @@ class Batch(unittest.TestCase):
         with tempfile.TemporaryDirectory() as out:
             cmd = [bpy.app.binary_path, "-b", os.path.join(CORNER, "scene.blend"), "--python-exit-code", "1",
                    "--python", os.path.join(ROOT, "scripts", "blender_batch.py"), "--",
-                   "--out", out, "--render", "--chains", "6", "--iterations", "300", "--samples", "8",
+                   "--out", out, "--render", "--chains", "6", "--iterations", "300", "--beam", "2", "--samples", "8",
                    "--build-dir", build_dir]
             p = subprocess.run(cmd, stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True, timeout=600)
             self.assertEqual(p.returncode, 0, p.stdout[-3000:])
@@ -279,6 +279,7 @@ class Batch(unittest.TestCase):
             self.assertEqual([(q["load"], q["status"]) for q in doc["parts"]], [("avionics_box", "ok")])
             self.assertEqual(doc["search"]["chains"], 6)
             self.assertEqual(doc["search"]["iterations"], 300)
+            self.assertEqual(doc["search"]["beam_width"], 2)
             for name in ("problem.json", "avionics_box/flat.dxf", "avionics_box/bends.csv", "scene.blend"):
                 self.assertTrue(os.path.getsize(os.path.join(out, name)) > 0, name)
             size, var = png_stats(os.path.join(out, "render.png"))

@@ -74,7 +74,7 @@ class GenerateInBlender(unittest.TestCase):
         p = sg.load_problem(os.path.join(ROOT, "sample_scenes", "corner", "problem.json"))
         progress = sg.GenerateProgress()
         box = {}
-        worker = threading.Thread(target=lambda: box.setdefault("r", sg.generate(p, progress, seed=3, chains=4, iterations=150)))
+        worker = threading.Thread(target=lambda: box.setdefault("r", sg.generate(p, progress, seed=3, chains=4, iterations=150, beam_width=2)))
         worker.start()
         ticks = 0
         while worker.is_alive():  # the GIL is free: this loop runs while the solver works
