@@ -84,8 +84,10 @@ class SolidReference(unittest.TestCase):
 
     def test_folded_strip_agrees_with_structured_s8r(self):
         L1, L2, b, P = 0.10, 0.08, 0.06, 100.0
+        # The leg is the base's child along the fold (its first two corners), so
+        # its fold is filled as on a part (solid_reference._fold_fillers).
         tabs = [rectangle((0, 0, 0), (L1, 0, 0), (0, b, 0), (0, 0, 1)),
-                rectangle((L1, 0, 0), (0, b, 0), (0, 0, -L2), (1, 0, 0))]
+                dict(rectangle((L1, 0, 0), (0, b, 0), (0, 0, -L2), (1, 0, 0)), parent=0)]
         C, n = self.solve(tabs, lambda X: np.abs(X[:, 0]) < 1e-9, lambda X: np.abs(X[:, 2] + L2) < 1e-9,
                           (L1, b / 2, -L2), [(1, P)])
         shell = os.path.join(self.tmp.name, "s8r.inp")

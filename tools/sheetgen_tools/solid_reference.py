@@ -25,8 +25,10 @@ Why a solid model (docs/fem.md "A solid reference"): on corner_obstacle and the
 right-angle battery CalculiX's S8R (shells expanded to 20-node bricks) is
 +3 % and +10 % softer than this model, while our shells are within 3 % of it;
 on a plain fold, a fold end and a 30 deg fold S8R and C3D10 agree within 1.4 %
-(tests/python/test_solid_reference.py checks the fold). A sharp fold in the
-solid is a t x t block joining the two plates, the idealisation the shell
+(tests/python/test_solid_reference.py checks the fold). At a sharp fold the
+two plates meet along the fold line, each ending square to its own
+mid-surface; a prism along the fold joins their end faces (_fold_fillers), so
+the sheet is whole through its thickness there, the idealisation the shell
 models share (neither has the bend radius).
 
 Self-rivets (two sheets riveted face to face, paper Sec. 5.2): where the two
@@ -60,6 +62,34 @@ class SolidNotApplicable(Exception):
     """The part has a feature the solid model does not represent."""
 
 
+def _fold_fillers(occ, tabs, t):
+    """One prism per fold, along the child's root edge (its corners 0 -> 1 on
+    the parent's edge): the cross-section is the quadrilateral of the four
+    points t/2 either side of the fold line along each plate's normal. Two
+    plates extruded about their mid-surfaces and ending at the fold line leave
+    a V-notch on the outer side of the bend, t/2 deep and as wide open as the
+    bend angle: at a 5 deg bend a crack through half the thickness, which
+    makes the solid soft where the shells (and the part) are whole. The prism
+    closes it with a chamfer from one plate's outer face to the other's."""
+    out = []
+    for tab in tabs:
+        parent = tab.get("parent", -1)
+        if parent is None or parent < 0:
+            continue
+        na = np.asarray(tabs[parent]["normal"], float)
+        nb = np.asarray(tab["normal"], float)
+        na, nb = na / np.linalg.norm(na), nb / np.linalg.norm(nb)
+        if np.linalg.norm(np.cross(na, nb)) < 1e-6:  # a flat extension: no notch
+            continue
+        c0, c1 = (np.asarray(c, float) for c in tab["corners"][:2])
+        ring = [c0 + 0.5 * t * na, c0 + 0.5 * t * nb, c0 - 0.5 * t * na, c0 - 0.5 * t * nb]
+        points = [occ.addPoint(*p) for p in ring]
+        lines = [occ.addLine(points[k], points[(k + 1) % 4]) for k in range(4)]
+        face = occ.addPlaneSurface([occ.addCurveLoop(lines)])
+        out += [e for e in occ.extrude([(2, face)], *(c1 - c0)) if e[0] == 3]
+    return out
+
+
 def mesh_plates(tabs, t, h):
     """Fuse one t-thick plate per tab (dicts with 'corners' and 'normal', m) and
     mesh the solid in C3D10 of size h (m). Returns (X (n x 3) m, tets (k x 10)
@@ -78,6 +108,7 @@ def mesh_plates(tabs, t, h):
             lines = [occ.addLine(points[k], points[(k + 1) % len(points)]) for k in range(len(points))]
             face = occ.addPlaneSurface([occ.addCurveLoop(lines)])
             volumes += [e for e in occ.extrude([(2, face)], *(t * n)) if e[0] == 3]
+        volumes += _fold_fillers(occ, tabs, t)
         if len(volumes) > 1:
             occ.fuse(volumes[:1], volumes[1:])
         occ.synchronize()
