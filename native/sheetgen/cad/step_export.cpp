@@ -379,9 +379,9 @@ TopoDS_Shell mid_surface(const FlatPattern& flat, const std::vector<RivetHole>& 
     // 1e-7 m = 1e-4 mm) of its parent edge's end has no relief and its zone
     // stops that far short of the corner: a fuzzy value below it leaves a
     // sliver of sheet there joining the parent's flat region to the tab's, and
-    // the two are then placed as one face in the parent's plane (the bay's
-    // radio and transponder, docs/cad.md). 1e-3 mm is 10x that tolerance and
-    // far below the kerf (0.2 mm), the least real feature of the outline.
+    // the two are then placed as one face in the parent's plane (docs/cad.md
+    // "Corners within the tolerance"). 1e-3 mm is 10x that tolerance and far
+    // below the kerf (0.2 mm), the least real feature of the outline.
     cut.SetFuzzyValue(1e-3);
     cut.Build();
     if (!cut.IsDone() || cut.HasErrors()) throw StepGeometryError("cutting the bend zones out of the flat sheet failed");
