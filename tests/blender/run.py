@@ -18,21 +18,39 @@ sys.path.insert(0, HERE)
 
 
 class TimedResult(unittest.TextTestResult):
-    """Keeps each test's wall time (Blender's Python 3.10 has no --durations), to find where the suite spends it."""
+    """Keeps each test's wall time (Blender's Python 3.10 has no --durations), to find where the suite spends it.
+
+    A class's time also counts the gaps between its tests: setUpClass and
+    tearDownClass run there, and most of the Blender tests' time is a search
+    their setUpClass runs once."""
+
+    def startTestRun(self):
+        self._last_stop = time.monotonic()   # the first class's setUpClass runs before its first test
+        super().startTestRun()
 
     def startTest(self, test):
-        self._t0 = time.monotonic()
+        now = time.monotonic()
+        self._t0 = now
+        self._gap = now - self._last_stop
         super().startTest(test)
 
     def stopTest(self, test):
         super().stopTest(test)
-        self.times = getattr(self, "times", []) + [(time.monotonic() - self._t0, test.id())]
+        now = time.monotonic()
+        self._last_stop = now
+        self.times = getattr(self, "times", []) + [(now - self._t0, test.id())]
+        cls = test.id().rsplit(".", 1)[0]
+        self.class_times = getattr(self, "class_times", {})
+        self.class_times[cls] = self.class_times.get(cls, 0.0) + (now - self._t0) + self._gap
 
 
 suite = unittest.defaultTestLoader.discover(HERE, pattern="test_*.py")
 result = unittest.TextTestRunner(verbosity=2, resultclass=TimedResult).run(suite)
 print("slowest blender tests:")
 for seconds, name in sorted(getattr(result, "times", []), reverse=True)[:10]:
+    print("  %6.1f s  %s" % (seconds, name))
+print("slowest blender test classes (setUpClass included):")
+for name, seconds in sorted(getattr(result, "class_times", {}).items(), key=lambda kv: -kv[1])[:10]:
     print("  %6.1f s  %s" % (seconds, name))
 print("blender tests: %d passed, %d failed" % (result.testsRun - len(result.failures) - len(result.errors) - len(result.skipped),
                                                len(result.failures) + len(result.errors)))
