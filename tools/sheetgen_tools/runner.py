@@ -48,6 +48,9 @@ class SolveRun:
     exit_code: int
     wall_s: float                     # s, the whole run
     cpu_s: float                      # s, user + system time of the solver process
+    user_s: float                     # s, user time of the solver process
+    system_s: float                   # s, system time (the kernel's: page faults, mmap/munmap)
+    minor_faults: int                 # pages the kernel handed out (ru_minflt)
     peak_rss_mb: float                # MiB, the solver's peak resident memory
     stdout: str                       # with SolveOptions.log: the log, both streams interleaved
     stderr: str                       # with SolveOptions.log: empty
@@ -106,7 +109,8 @@ def solve(problem, out_dir=None, options=None):
         with open(result_path) as f:
             result = json.load(f)
     return SolveRun(problem=problem, out_dir=out_dir, command=cmd, exit_code=code, wall_s=wall,
-                    cpu_s=usage.ru_utime + usage.ru_stime, peak_rss_mb=usage.ru_maxrss / 1024.0,
+                    cpu_s=usage.ru_utime + usage.ru_stime, user_s=usage.ru_utime, system_s=usage.ru_stime,
+                    minor_faults=usage.ru_minflt, peak_rss_mb=usage.ru_maxrss / 1024.0,
                     stdout=stdout, stderr=stderr, result=result)
 
 
