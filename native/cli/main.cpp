@@ -9,6 +9,7 @@
 #include <iostream>
 
 #include "sheetgen/core/input_error.hpp"
+#include "sheetgen/core/malloc_settings.hpp"
 #include "sheetgen/core/problem.hpp"
 #include "sheetgen/env/environment.hpp"
 #include "sheetgen/fem/ccx_export.hpp"
@@ -489,6 +490,10 @@ CLI::App* add_export_ccx_command(CLI::App& app, ExportCcxArgs& a) {
 }  // namespace
 
 int main(int argc, char** argv) {
+  // The CLI owns its process: keep freed FEM buffers for the next candidate
+  // (core/malloc_settings.hpp). The Python module leaves Blender's alone.
+  if (const char* refused = sheetgen::apply_malloc_settings(); *refused)
+    std::fprintf(stderr, "sheetgen: warning: glibc refused the allocator setting %s\n", refused);
   CLI::App app{"sheetgen: generative design of sheet-metal brackets"};
   app.require_subcommand(1);
   CheckArgs check_args;

@@ -4,6 +4,7 @@
 set(SHEETGEN_CORE_SOURCES
   input_error.cpp
   atomic_file.cpp
+  malloc_settings.cpp
   triangle_mesh.cpp
   mesh_io.cpp
   geometry.cpp

@@ -93,7 +93,12 @@ SparseMatrix assemble_elements(const ShellModel& m, const DofMap& map,
                                const std::function<Matrix18d(int element)>& element_matrix,
                                const std::vector<NodalBlock>& nodal_blocks) {
   const int n_elem = static_cast<int>(m.triangles.size());
-  Triplets triplets;
+  // One list per thread, emptied and refilled by every assembly: it is the
+  // largest buffer of an FEM call (16 B x 171 per element, 30 MB for 11 000
+  // elements), and a fresh one each call was most of a solve's page faults
+  // (docs/benchmarks.md "Allocator").
+  thread_local Triplets triplets;
+  triplets.clear();
   triplets.reserve(static_cast<size_t>(n_elem) * 171 + nodal_blocks.size() * 21);  // 18*19/2 per element
   for (int e = 0; e < n_elem; ++e) {
     const auto& t = m.triangles[e];
