@@ -3,7 +3,7 @@
 // from the flat sheet, bends are made one at a time, each swept from 0 to its
 // angle. Every sampled intermediate state of the sharp mid-surface model must
 // keep non-adjacent tabs t + gap apart. Only the part's own collisions are
-// checked (press-brake tooling is not modelled).
+// checked here; part/press_brake.hpp checks the tools and the machine.
 #include <string>
 #include <vector>
 

@@ -1,0 +1,316 @@
+#include "sheetgen/part/press_brake.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <limits>
+#include <stdexcept>
+
+#include "sheetgen/core/polygon_geometry.hpp"
+#include "sheetgen/part/realisation.hpp"
+
+namespace sheetgen {
+
+namespace {
+
+constexpr double kDeg = M_PI / 180.0;
+constexpr double kFar = 10.0;  // m, half-length along Z of the ram and the bed (they span the machine)
+
+// ---- the standard tools
+
+std::vector<Vec2> quad(Vec2 a, Vec2 b, Vec2 c, Vec2 d) { return {a, b, c, d}; }
+
+// Straight punch: the tip wedge up to where it is 20 mm wide, then a 20 mm body.
+PunchTool straight_punch(double tip_angle, double height) {
+  const double tau = std::tan(tip_angle / 2), b = 0.010, hw = b / tau;
+  PunchTool p{"straight " + std::to_string(static_cast<int>(std::lround(tip_angle / kDeg))) + " deg", {}, tip_angle,
+              height};
+  p.pieces.push_back({Vec2(0, 0), Vec2(b, hw), Vec2(-b, hw)});
+  p.pieces.push_back(quad(Vec2(-b, hw), Vec2(b, hw), Vec2(b, height), Vec2(-b, height)));
+  return p;
+}
+
+// Gooseneck: a short tip wedge, a slender column along the wedge's -X face and
+// a head reaching back over +X: the space between (the throat, 12-80 mm above
+// the tip on +X) takes a return flange. Every piece lies inside the tip's cone,
+// so the bend's own flanges, outside that cone, clear them all.
+PunchTool gooseneck_punch(double tip_angle, double height) {
+  const double tau = std::tan(tip_angle / 2), h1 = 0.012, h2 = 0.080, c = 2 * h1 * tau;
+  PunchTool p{"gooseneck " + std::to_string(static_cast<int>(std::lround(tip_angle / kDeg))) + " deg", {}, tip_angle,
+              height};
+  p.pieces.push_back({Vec2(0, 0), Vec2(h1 * tau, h1), Vec2(-h1 * tau, h1)});
+  p.pieces.push_back(quad(Vec2(-h1 * tau, h1), Vec2(h1 * tau, h1), Vec2(-h2 * tau + c, h2), Vec2(-h2 * tau, h2)));
+  const double reach = h2 * tau;  // the head's overhang on +X: the cone's half-width at the throat's top
+  p.pieces.push_back(quad(Vec2(-h2 * tau, h2), Vec2(reach, h2), Vec2(reach, height), Vec2(-height * tau, height)));
+  return p;
+}
+
+DieTool v_die(double v, double angle, double ratio) {
+  char name[64];
+  std::snprintf(name, sizeof name, "V%.3g %.0f deg", v * 1e3, angle / kDeg);
+  return DieTool{name, v, angle, 0.060, std::max(0.030, 3 * v), ratio};
+}
+
+// ---- geometry in the tool frame
+
+struct Prism {  // a convex profile (CCW in X, Y) extruded over [z0, z1]
+  std::vector<Vec2> profile;
+  double z0 = 0, z1 = 0;
+  std::vector<std::vector<Vec3>> faces;
+  std::vector<Vec3> normals;
+};
+
+Prism make_prism(const std::vector<Vec2>& profile, double z0, double z1) {
+  Prism p{profile, z0, z1, {}, {}};
+  const size_t n = profile.size();
+  std::vector<Vec3> bottom, top;
+  for (size_t i = 0; i < n; ++i) {
+    const Vec2 a = profile[i], b = profile[(i + 1) % n];
+    p.faces.push_back({Vec3(a.x(), a.y(), z0), Vec3(b.x(), b.y(), z0), Vec3(b.x(), b.y(), z1), Vec3(a.x(), a.y(), z1)});
+    p.normals.push_back(Vec3(b.y() - a.y(), a.x() - b.x(), 0).normalized());
+    bottom.push_back(Vec3(profile[n - 1 - i].x(), profile[n - 1 - i].y(), z0));
+    top.push_back(Vec3(a.x(), a.y(), z1));
+  }
+  p.faces.push_back(bottom);
+  p.normals.push_back(-Vec3::UnitZ());
+  p.faces.push_back(top);
+  p.normals.push_back(Vec3::UnitZ());
+  return p;
+}
+
+std::vector<Vec2> mirrored(const std::vector<Vec2>& profile) {
+  std::vector<Vec2> m;
+  for (auto it = profile.rbegin(); it != profile.rend(); ++it) m.push_back(Vec2(-it->x(), it->y()));
+  return m;
+}
+
+// Distance from a convex planar polygon to a prism, m (0 when inside or crossing).
+double polygon_prism_distance(const std::vector<Vec3>& polygon, const Vec3& normal, const Prism& prism,
+                              double stop_below) {
+  for (const Vec3& v : polygon)
+    if (v.z() >= prism.z0 && v.z() <= prism.z1 && point_in_convex(Vec2(v.x(), v.y()), prism.profile)) return 0;
+  double d = std::numeric_limits<double>::infinity();
+  for (size_t f = 0; f < prism.faces.size() && d >= stop_below; ++f)
+    d = std::min(d, convex_polygon_distance(polygon, normal, prism.faces[f], prism.normals[f], stop_below));
+  return d;
+}
+
+// The tool frame of bend `k` at its current angle `a` (signed) in `rp`.
+struct ToolFrame {
+  Vec3 origin, x, y, z;
+  Vec3 point(const Vec3& p) const { const Vec3 r = p - origin; return Vec3(r.dot(x), r.dot(y), r.dot(z)); }
+  Vec3 vector(const Vec3& v) const { return Vec3(v.dot(x), v.dot(y), v.dot(z)); }
+};
+
+ToolFrame tool_frame(const RealisedPart& rp, const Part& part, int k, double a) {
+  const RealisedTab& tab = rp.tabs[k];
+  const Vec3 z = tab.x_axis;
+  const Vec3 n_par = rp.tabs[part.tabs[k].parent].normal;
+  const Vec3 u_p = n_par.cross(z);  // in the parent's plane, away from the bend line
+  const Vec3 n_in = part.tabs[k].params.theta3 >= 0 ? n_par : Vec3(-n_par);  // the inside of the bend
+  const double h = std::abs(a) / 2;
+  return ToolFrame{tab.origin, std::sin(h) * n_in - std::cos(h) * u_p, std::cos(h) * n_in + std::sin(h) * u_p, z};
+}
+
+// How far a tab reaches from the bend line (o, along z, length L) in its own
+// plane (direction u), at the two ends of the line: the shorter, m.
+double flange_depth(const std::vector<Vec3>& corners, const Vec3& o, const Vec3& z, const Vec3& u, double L) {
+  double shortest = std::numeric_limits<double>::infinity();
+  for (double s0 : {1e-3 * L, (1 - 1e-3) * L}) {
+    double reach = 0;
+    for (size_t i = 0; i < corners.size(); ++i) {
+      const Vec3 p = corners[i] - o, q = corners[(i + 1) % corners.size()] - o;
+      const double sp = p.dot(z), sq = q.dot(z);
+      if ((sp - s0) * (sq - s0) > 0 || sp == sq) continue;
+      const double f = (s0 - sp) / (sq - sp);
+      reach = std::max(reach, p.dot(u) + f * (q.dot(u) - p.dot(u)));
+    }
+    shortest = std::min(shortest, reach);
+  }
+  return shortest;
+}
+
+// ---- one bend with one punch and die
+
+struct Attempt {
+  std::string reason;      // "" when the bend can be made
+  double progress = 0;     // how far it got: 0 before the stroke, (0, 1] through it
+  double flange_need = 0;  // m, the die's shortest flange when that rule failed
+};
+
+// Which failure to report: the one that got furthest; among flange failures,
+// the one of the die with the shortest flange (the smallest die).
+bool nearer(const Attempt& a, const Attempt& than) {
+  if (a.progress != than.progress) return a.progress > than.progress;
+  return a.flange_need > 0 && (than.flange_need == 0 || a.flange_need < than.flange_need);
+}
+
+class BendCheck {
+ public:
+  BendCheck(const Part& part, const SheetSpec& spec, const ToolSet& tools, std::vector<double> angles, int k)
+      : part_(part), t_(spec.thickness), tools_(tools), k_(k), parent_(part.tabs[k].parent) {
+    ro_.angles = std::move(angles);
+  }
+
+  Attempt run(const PunchTool& punch, const DieTool& die, bool flipped) {
+    if (std::string r = angle_rule(punch, die); !r.empty()) return {r, 0};
+    ro_.angles[k_] = 0;
+    realise_into(part_, rp_, ro_);
+    if (std::string r = flange_rule(die); !r.empty()) return {r, 0, die.min_flange_ratio * die.v_opening};
+    if (std::string r = fits_open_press(punch, die); !r.empty()) return {r, 0};
+    build_tools(punch, die, flipped);
+    const double target = part_.tabs[k_].params.theta3;
+    const int steps = std::max(1, static_cast<int>(std::ceil(std::abs(target) / tools_.max_step)));
+    for (int s = 0; s <= steps; ++s) {
+      ro_.angles[k_] = target * s / steps;
+      realise_into(part_, rp_, ro_);
+      if (std::string r = collision(punch, die); !r.empty()) {
+        char at[64];
+        std::snprintf(at, sizeof at, " at %.0f deg of its %.0f deg", std::abs(ro_.angles[k_]) / kDeg,
+                      std::abs(target) / kDeg);
+        return {r + at, static_cast<double>(s + 1) / (steps + 1)};
+      }
+    }
+    return {"", 1};
+  }
+
+ private:
+  std::string angle_rule(const PunchTool& punch, const DieTool& die) const {
+    const double inner = M_PI - std::abs(part_.tabs[k_].params.theta3) - tools_.springback;
+    char buf[160];
+    if (inner < punch.tip_angle || inner < die.angle) {
+      std::snprintf(buf, sizeof buf, "the bend closes to %.0f deg under load, inside the %s tip (%.0f deg) or die (%.0f deg)",
+                    inner / kDeg, (inner < punch.tip_angle ? "punch's" : "die's"), punch.tip_angle / kDeg,
+                    die.angle / kDeg);
+      return buf;
+    }
+    return "";
+  }
+
+  std::string flange_rule(const DieTool& die) const {
+    const RealisedTab& tab = rp_.tabs[k_];
+    const double L = (tab.bend_end() - tab.origin).norm();
+    const Vec3 z = tab.x_axis, n_par = rp_.tabs[parent_].normal;
+    const double need = die.min_flange_ratio * die.v_opening;
+    const double child = flange_depth(tab.corners, tab.origin, z, z.cross(n_par), L);
+    const double parent = flange_depth(rp_.tabs[parent_].corners, tab.origin, z, n_par.cross(z), L);
+    const double shortest = std::min(child, parent);
+    if (shortest >= need) return "";
+    char buf[200];
+    std::snprintf(buf, sizeof buf, "the flange of tab %d is %.1f mm, shorter than %.1f x V = %.1f mm on the die %s",
+                  child <= parent ? k_ : parent_, shortest * 1e3, die.min_flange_ratio, need * 1e3, die.name.c_str());
+    return buf;
+  }
+
+  std::string fits_open_press(const PunchTool& punch, const DieTool& die) const {
+    const ToolFrame f = tool_frame(rp_, part_, k_, 0);
+    double top = 0;
+    for (const RealisedTab& tab : rp_.tabs)
+      for (const Vec3& c : tab.corners) top = std::max(top, f.point(c).y());
+    const double room = tools_.machine.open_height - die.height - punch.height;
+    if (top + t_ / 2 <= room) return "";
+    char buf[160];
+    std::snprintf(buf, sizeof buf, "the part stands %.0f mm above the die, more than the %.0f mm under the open punch",
+                  (top + t_ / 2) * 1e3, room * 1e3);
+    return buf;
+  }
+
+  void build_tools(const PunchTool& punch, const DieTool& die, bool flipped) {
+    const RealisedTab& tab = rp_.tabs[k_];
+    const double L = (tab.bend_end() - tab.origin).norm(), top = t_ / 2, bottom = -t_ / 2;
+    punch_.clear();
+    for (const auto& piece : punch.pieces) {
+      std::vector<Vec2> shifted;
+      for (const Vec2& v : piece) shifted.push_back(v + Vec2(0, top));
+      punch_.push_back(make_prism(flipped ? mirrored(shifted) : shifted, 0, L));
+    }
+    // The die's top a hair below the clearance: the flat sheet lies on it by design.
+    const double v = die.v_opening / 2, depth = v / std::tan(die.angle / 2), w = die.width / 2, h = die.height;
+    const double seat = bottom - tools_.gap - 1e-6;
+    const std::vector<Vec2> left = {Vec2(-w, bottom - h), Vec2(0, bottom - h), Vec2(0, seat - depth),
+                                    Vec2(-v, seat), Vec2(-w, seat)};
+    die_ = {make_prism(left, 0, L), make_prism(mirrored(left), 0, L)};
+    const double rw = tools_.machine.ram_width / 2, bw = tools_.machine.bed_width / 2;
+    ram_ = make_prism(quad(Vec2(-rw, top + punch.height), Vec2(rw, top + punch.height), Vec2(rw, top + punch.height + 1),
+                           Vec2(-rw, top + punch.height + 1)), -kFar, kFar);
+    bed_ = make_prism(quad(Vec2(-bw, bottom - h - 1), Vec2(bw, bottom - h - 1), Vec2(bw, bottom - h),
+                           Vec2(-bw, bottom - h)), -kFar, kFar);
+  }
+
+  // The first tab too close to a tool or the machine in the current state.
+  std::string collision(const PunchTool& punch, const DieTool& die) const {
+    const ToolFrame f = tool_frame(rp_, part_, k_, ro_.angles[k_]);
+    const double need = t_ / 2 + tools_.gap;
+    for (int i = 0; i < part_.size(); ++i) {
+      std::vector<Vec3> c;
+      for (const Vec3& p : rp_.tabs[i].corners) c.push_back(f.point(p));
+      const Vec3 n = f.vector(rp_.tabs[i].normal);
+      const bool own = i == k_ || i == parent_;  // the bend's flanges touch punch tip and die by design
+      auto near = [&](const Prism& p) { return polygon_prism_distance(c, n, p, need) < need; };
+      char buf[160];
+      if (!own)
+        for (const Prism& p : punch_)
+          if (near(p)) return std::snprintf(buf, sizeof buf, "tab %d hits the punch %s", i, punch.name.c_str()), buf;
+      if (!own)
+        for (const Prism& p : die_)
+          if (near(p)) return std::snprintf(buf, sizeof buf, "tab %d hits the die %s", i, die.name.c_str()), buf;
+      if (near(ram_)) return std::snprintf(buf, sizeof buf, "tab %d hits the ram above the punch", i), buf;
+      if (near(bed_)) return std::snprintf(buf, sizeof buf, "tab %d hits the bed below the die", i), buf;
+    }
+    return "";
+  }
+
+  const Part& part_;
+  double t_;
+  const ToolSet& tools_;
+  int k_, parent_;
+  RealiseOptions ro_;
+  RealisedPart rp_;
+  std::vector<Prism> punch_, die_;
+  Prism ram_, bed_;
+};
+
+}  // namespace
+
+ToolSet standard_tool_set(double t) {
+  ToolSet s;
+  s.punches = {straight_punch(30 * kDeg, 0.120), gooseneck_punch(30 * kDeg, 0.120)};
+  // 8 t first (the usual choice for aluminium sheet), then the narrower and
+  // the wider; the acute die last, for bends past 90 deg.
+  for (double m : {8.0, 6.0, 10.0, 12.0}) s.dies.push_back(v_die(std::max(4e-3, m * t), 85 * kDeg, 0.7));
+  s.dies.push_back(v_die(std::max(4e-3, 8 * t), 30 * kDeg, 1.1));
+  return s;
+}
+
+PressBrakeResult check_press_brake(const Part& part, const std::vector<int>& order, const SheetSpec& spec,
+                                   const ToolSet& tools) {
+  if (tools.punches.empty() || tools.dies.empty()) throw std::invalid_argument("check_press_brake: an empty tool set");
+  PressBrakeResult r;
+  std::vector<double> angles(part.size(), 0.0);
+  for (int k : order) {
+    if (k <= 0 || k >= part.size()) throw std::invalid_argument("check_press_brake: order names a tab that is not a bend");
+    BendCheck check(part, spec, tools, angles, k);
+    Attempt nearest{"", -1};
+    for (size_t p = 0; p < tools.punches.size() && nearest.progress < 1; ++p)
+      for (size_t d = 0; d < tools.dies.size() && nearest.progress < 1; ++d)
+        for (bool flipped : {false, true}) {
+          const Attempt a = check.run(tools.punches[p], tools.dies[d], flipped);
+          if (a.reason.empty()) {
+            r.tooling.push_back({k, static_cast<int>(p), static_cast<int>(d), flipped});
+            nearest = {"", 1};
+            break;
+          }
+          if (nearer(a, nearest)) nearest = a;
+        }
+    if (nearest.progress < 1) {
+      r.failed_tab = k;
+      r.message = "bend of tab " + std::to_string(k) + ": " + nearest.reason;
+      return r;
+    }
+    angles[k] = part.tabs[k].params.theta3;
+  }
+  r.ok = true;
+  return r;
+}
+
+}  // namespace sheetgen

@@ -1,0 +1,132 @@
+// Press-brake feasibility (part/press_brake.hpp) on parts whose outcome
+// follows from the tools' drawn dimensions: a return lip a straight punch
+// cannot clear and a gooseneck can, a flange shorter than the smallest die
+// takes, a downturned flange that meets the bed, and a tall flange that does
+// not fit under the open punch. Sheet 1.6 mm: V-dies of 9.6, 12.8, 16 and
+// 19.2 mm (85 deg) and 12.8 mm (30 deg).
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <string>
+
+#include "sheetgen/part/bend_sequence.hpp"
+#include "sheetgen/part/press_brake.hpp"
+#include "../common/sheet_fixture.hpp"
+
+namespace sheetgen {
+namespace {
+
+using fixtures::kDeg;
+using fixtures::spec;
+
+// A 60 mm wide strip, 40 mm deep; tab 1 stands up on its front edge (90 deg,
+// `leg` long) and carries tab 2, a lip bent back over the strip (90 deg,
+// `lip` long). Bent lip first, then the leg.
+Part channel_with_lip(double leg, double lip) {
+  Part p = make_base_part({Vec3(0, 0, 0), Vec3(0.06, 0, 0), Vec3(0.06, 0.04, 0), Vec3(0, 0.04, 0)}, Vec3::UnitZ());
+  const int a = p.add_tab(0, 0, {0.0, 0.06, leg, 0, 0, 90 * kDeg});
+  p.add_tab(a, kFarEdge, {0.0, 0.06, lip, 0, 0, 90 * kDeg});
+  return p;
+}
+
+ToolSet only_punch(int index) {
+  ToolSet tools = standard_tool_set(spec().thickness);
+  tools.punches = {tools.punches[index]};
+  return tools;
+}
+
+TEST(PressBrake, StandardToolsAreTheDocumentedOnes) {
+  const ToolSet tools = standard_tool_set(1.6e-3);
+  ASSERT_EQ(tools.punches.size(), 2u);
+  EXPECT_EQ(tools.punches[0].name, "straight 30 deg");
+  EXPECT_EQ(tools.punches[1].name, "gooseneck 30 deg");
+  ASSERT_EQ(tools.dies.size(), 5u);
+  EXPECT_EQ(tools.dies[0].name, "V12.8 85 deg");  // 8 t first
+  EXPECT_NEAR(tools.dies[1].v_opening, 6 * 1.6e-3, 1e-15);
+  EXPECT_EQ(tools.dies[4].name, "V12.8 30 deg");
+}
+
+TEST(PressBrake, ReturnLipNeedsTheGooseneck) {
+  // At the end of the leg's bend both flanges stand 45 deg up in the tool
+  // frame: the leg's far edge at (17.7, 17.7) mm, the lip's edge at
+  // (7.1, 28.3) mm. The straight punch is 2 x 28.3 tan 15 deg = 15.2 mm wide
+  // there: the lip's edge is inside it. The gooseneck's column has moved to
+  // x < -1.2 mm at that height, and the lip lies in its throat.
+  const Part part = channel_with_lip(0.025, 0.015);
+  const PressBrakeResult straight = check_press_brake(part, {2, 1}, spec(), only_punch(0));
+  ASSERT_FALSE(straight.ok);
+  EXPECT_EQ(straight.failed_tab, 1);
+  EXPECT_NE(straight.message.find("tab 2 hits the punch straight 30 deg"), std::string::npos) << straight.message;
+  const PressBrakeResult goose = check_press_brake(part, {2, 1}, spec(), only_punch(1));
+  EXPECT_TRUE(goose.ok) << goose.message;
+  // The standard set bends the lip with the straight punch and the leg with the gooseneck.
+  const PressBrakeResult both = check_press_brake(part, {2, 1}, spec(), standard_tool_set(spec().thickness));
+  ASSERT_TRUE(both.ok) << both.message;
+  ASSERT_EQ(both.tooling.size(), 2u);
+  EXPECT_EQ(both.tooling[0].punch, 0);
+  EXPECT_EQ(both.tooling[1].punch, 1);
+  // A leg 40 mm long puts the lip outside the straight punch (edge at x = 17.7 mm, 7.7 mm clear of its 10 mm body).
+  EXPECT_TRUE(check_press_brake(channel_with_lip(0.040, 0.015), {2, 1}, spec(), only_punch(0)).ok);
+}
+
+TEST(PressBrake, FlangeShorterThanTheSmallestDieTakes) {
+  // The smallest die: V = 6 t = 9.6 mm; its shortest flange 0.7 V = 6.72 mm.
+  Part part = fixtures::square_base();
+  part.add_tab(0, 0, {0.005, 0.03, 0.005, 0, 0, 90 * kDeg});
+  const PressBrakeResult r = check_press_brake(part, {1}, spec(), standard_tool_set(spec().thickness));
+  ASSERT_FALSE(r.ok);
+  EXPECT_EQ(r.failed_tab, 1);
+  EXPECT_NE(r.message.find("the flange of tab 1 is 5.0 mm, shorter than 0.7 x V = 6.7 mm on the die V9.6 85 deg"),
+            std::string::npos) << r.message;
+  // 7 mm: too short for the 8 t die (8.96 mm), long enough for the 6 t one.
+  Part longer = fixtures::square_base();
+  longer.add_tab(0, 0, {0.005, 0.03, 0.007, 0, 0, 90 * kDeg});
+  const PressBrakeResult ok = check_press_brake(longer, {1}, spec(), standard_tool_set(spec().thickness));
+  ASSERT_TRUE(ok.ok) << ok.message;
+  EXPECT_EQ(ok.tooling[0].die, 1);
+}
+
+TEST(PressBrake, DownturnedFlangeMeetsTheBed) {
+  // A 40 mm strip with a flange turned 90 deg down at its back edge: bending
+  // the front edge, that flange hangs from x = -40 mm. The bed (100 mm wide)
+  // starts 60 mm below the die's shoulders: 70 mm of flange reaches it at
+  // once, 50 mm does not.
+  for (double drop : {0.070, 0.050}) {
+    Part part = fixtures::square_base(0.04);
+    part.add_tab(0, 2, {0.005, 0.03, drop, 0, 0, -90 * kDeg});
+    part.add_tab(0, 0, {0.005, 0.03, 0.02, 0, 0, 90 * kDeg});
+    const PressBrakeResult r = check_press_brake(part, {1, 2}, spec(), standard_tool_set(spec().thickness));
+    if (drop > 0.06) {
+      ASSERT_FALSE(r.ok);
+      EXPECT_EQ(r.failed_tab, 2);
+      EXPECT_NE(r.message.find("tab 1 hits the bed below the die at 0 deg"), std::string::npos) << r.message;
+    } else {
+      EXPECT_TRUE(r.ok) << r.message;
+    }
+  }
+}
+
+TEST(PressBrake, TallFlangeDoesNotFitUnderTheOpenPunch) {
+  // Open height 400 mm - die 60 mm - punch 120 mm: 220 mm under the punch.
+  // A flange standing 250 mm at the back of the strip does not go in.
+  Part part = fixtures::square_base(0.04);
+  part.add_tab(0, 2, {0.005, 0.03, 0.25, 0, 0, 90 * kDeg});
+  part.add_tab(0, 0, {0.005, 0.03, 0.02, 0, 0, 90 * kDeg});
+  const PressBrakeResult r = check_press_brake(part, {1, 2}, spec(), standard_tool_set(spec().thickness));
+  ASSERT_FALSE(r.ok);
+  EXPECT_EQ(r.failed_tab, 2);
+  EXPECT_NE(r.message.find("more than the 220 mm under the open punch"), std::string::npos) << r.message;
+}
+
+TEST(PressBrake, AcuteBendTakesTheAcuteDie) {
+  // 120 deg of bend closes the sheet to 60 - 3 (springback) = 57 deg: inside
+  // the 85 deg dies, outside the 30 deg tools.
+  Part part = fixtures::square_base();
+  part.add_tab(0, 0, {0.005, 0.03, 0.02, 0, 0, 120 * kDeg});
+  const PressBrakeResult r = check_press_brake(part, {1}, spec(), standard_tool_set(spec().thickness));
+  ASSERT_TRUE(r.ok) << r.message;
+  EXPECT_EQ(r.tooling[0].die, 4);
+}
+
+}  // namespace
+}  // namespace sheetgen
