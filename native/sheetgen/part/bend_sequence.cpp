@@ -151,6 +151,8 @@ BendSequenceResult plan_bend_sequence(const Part& part, const SheetSpec& spec, c
   std::vector<int> order;
   BendCollision deepest;
   int deepest_level = -1;
+  std::string deepest_press;  // the press brake's reason, when its failure was the deepest
+  std::vector<double> done(n, 0.0);
   std::function<bool()> dfs = [&]() -> bool {
     if (order.size() == candidates.size()) return true;
     if (dead.count(mask)) return false;
@@ -166,9 +168,22 @@ BendSequenceResult plan_bend_sequence(const Part& part, const SheetSpec& spec, c
         if (static_cast<int>(order.size()) > deepest_level) {
           deepest_level = static_cast<int>(order.size());
           deepest = h;
+          deepest_press.clear();
         }
         continue;
       }
+      if (o.tools) {
+        const BendToolChoice tools = choose_bend_tools(part, k, done, spec, *o.tools);
+        if (!tools.ok) {
+          if (static_cast<int>(order.size()) > deepest_level) {
+            deepest_level = static_cast<int>(order.size());
+            deepest_press = tools.reason;
+          }
+          sim.set_angle(k, 0.0);
+          continue;
+        }
+      }
+      done[k] = part.tabs[k].params.theta3;
       sim.set_angle(k, part.tabs[k].params.theta3);
       mask[k] = '1';
       order.push_back(k);
@@ -176,6 +191,7 @@ BendSequenceResult plan_bend_sequence(const Part& part, const SheetSpec& spec, c
       order.pop_back();
       mask[k] = '0';
       sim.set_angle(k, 0.0);
+      done[k] = 0.0;
       if (r.exhausted) return false;
     }
     dead.insert(mask);
@@ -188,7 +204,8 @@ BendSequenceResult plan_bend_sequence(const Part& part, const SheetSpec& spec, c
   r.status = ValidityReason::NoBendSequence;
   r.collision = deepest;
   r.message = std::string(r.exhausted ? "no bend sequence found within " : "no bend sequence exists (searched ") +
-              std::to_string(r.sweeps) + " sweeps" + (r.exhausted ? "" : ")") + "; deepest failure: " + describe(deepest);
+              std::to_string(r.sweeps) + " sweeps" + (r.exhausted ? "" : ")") + "; deepest failure: " +
+              (deepest_press.empty() ? describe(deepest) : deepest_press);
   return r;
 }
 

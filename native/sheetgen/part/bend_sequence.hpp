@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "sheetgen/part/press_brake.hpp"
 #include "sheetgen/part/validity.hpp"
 
 namespace sheetgen {
@@ -15,6 +16,9 @@ struct BendSequenceOptions {
   double max_step = M_PI / 180.0;  // rad, largest angle increment between sampled states of a sweep
   double gap = 0.2e-3;             // m, kept beyond t between non-adjacent tabs (as ValidityOptions::self_gap)
   int max_sweeps = 5000;           // search budget: bend sweeps simulated by plan_bend_sequence
+  // plan_bend_sequence only: when set, a bend is taken next only if one of
+  // these press-brake tools makes it in that state (part/press_brake.hpp).
+  const ToolSet* tools = nullptr;
 };
 
 struct BendCollision {
@@ -41,7 +45,8 @@ BendSequenceResult check_bend_order(const Part& part, const std::vector<int>& or
                                     const BendSequenceOptions& options = {});
 
 // Depth-first search over orders, shallow bends first, pruning sets of done
-// bends already known to be dead ends. Deterministic.
+// bends already known to be dead ends; with options.tools, over the orders the
+// press brake can make. Deterministic.
 BendSequenceResult plan_bend_sequence(const Part& part, const SheetSpec& spec, const BendSequenceOptions& options = {});
 
 }  // namespace sheetgen

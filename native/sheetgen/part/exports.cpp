@@ -5,6 +5,7 @@
 #include <fstream>
 #include <iterator>
 #include <limits>
+#include <algorithm>
 #include <sstream>
 #include <stdexcept>
 
@@ -351,12 +352,13 @@ std::string flat_pattern_svg(const FlatPattern& flat, const DrawingOptions& o, c
   return s.str();
 }
 
-std::string bend_table_csv(const FlatPattern& flat, const std::vector<int>& order) {
+std::string bend_table_csv(const FlatPattern& flat, const std::vector<int>& order,
+                           const std::vector<BendToolRow>& tools) {
   std::vector<int> seq = order;
   if (seq.empty())
     for (const FlatBend& b : flat.bends) seq.push_back(b.tab);
   std::ostringstream s;
-  s << "order,angle_deg,direction,inside_radius_mm,length_mm,tab\n";
+  s << "order,angle_deg,direction,inside_radius_mm,length_mm,tab,punch,die,turned_over\n";
   std::vector<const FlatBend*> bend_of(flat.pieces.size(), nullptr);
   for (const FlatBend& b : flat.bends) bend_of[b.tab] = &b;
   int k = 0;
@@ -364,7 +366,12 @@ std::string bend_table_csv(const FlatPattern& flat, const std::vector<int>& orde
     if (t <= 0 || t >= static_cast<int>(bend_of.size()) || !bend_of[t]) continue;
     const FlatBend& b = *bend_of[t];
     s << ++k << "," << f6(deg(std::abs(b.angle))) << "," << (b.direction == BendDirection::Up ? "UP" : "DOWN") << ","
-      << f6(1e3 * b.inside_radius) << "," << f6(1e3 * b.length) << "," << t << "\n";
+      << f6(1e3 * b.inside_radius) << "," << f6(1e3 * b.length) << "," << t;
+    const auto tool = std::find_if(tools.begin(), tools.end(), [&](const BendToolRow& r) { return r.tab == t; });
+    if (tool == tools.end())
+      s << ",,,\n";
+    else
+      s << "," << tool->punch << "," << tool->die << "," << (tool->turned_over ? "yes" : "no") << "\n";
   }
   return s.str();
 }

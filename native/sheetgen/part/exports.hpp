@@ -38,9 +38,17 @@ std::string flat_pattern_svg(const FlatPattern& flat, const DrawingOptions& opti
 // lower-left corner at 0, 0); kind "flange" or "self"; other_tab and
 // after_bend empty for flange rivets (set when the part is installed).
 std::string rivet_table_csv(const FlatPattern& flat, const std::vector<RivetHole>& holes);
-// Header "order,angle_deg,direction,inside_radius_mm,length_mm,tab"; one row per
-// bend in bending order; angle_deg is |theta3|, direction UP or DOWN.
-std::string bend_table_csv(const FlatPattern& flat, const std::vector<int>& bend_order = {});
+// The press-brake tools of one bend (part/press_brake.hpp), for the bend table.
+struct BendToolRow {
+  int tab = -1;
+  std::string punch, die;
+  bool turned_over = false;  // the part turned over front to back in the press
+};
+// Header "order,angle_deg,direction,inside_radius_mm,length_mm,tab,punch,die,turned_over";
+// one row per bend in bending order; angle_deg is |theta3|, direction UP or
+// DOWN; punch, die and turned_over (yes/no) empty for a bend without tools.
+std::string bend_table_csv(const FlatPattern& flat, const std::vector<int>& bend_order = {},
+                           const std::vector<BendToolRow>& tools = {});
 // Wavefront OBJ of the bent mid-surface in metres, one object "tab_<i>" per tab
 // (an n-gon face, counter-clockwise seen from the sheet's top side).
 std::string part_obj(const RealisedPart& realised);

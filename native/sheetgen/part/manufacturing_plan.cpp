@@ -19,6 +19,17 @@ ManufacturingPlan plan_manufacturing(const Part& part, const SheetSpec& spec, co
     plan.status = plan.sequence.status;
     plan.message = plan.sequence.message;
   }
+  if (o.press_brake && plan.sequence.ok()) {
+    // An order the press brake can make, when there is one; otherwise the
+    // part-only order stays, and plan.press says which bend no tool makes.
+    plan.tools = standard_tool_set(spec.thickness);
+    BendSequenceOptions with_tools = o.bends;
+    with_tools.tools = &plan.tools;
+    BendSequenceResult pressed = plan_bend_sequence(part, spec, with_tools);
+    if (pressed.ok()) plan.sequence = std::move(pressed);
+    plan.press = check_press_brake(part, plan.sequence.order, spec, plan.tools);
+    plan.press_checked = true;
+  }
   return plan;
 }
 
@@ -27,6 +38,14 @@ void set_rivet_holes(ManufacturingPlan& plan, const RealisedPart& realised, cons
   // Numbered as the drawings number the bends (write_manufacturing_files).
   const std::vector<int> order = plan.sequence.ok() ? plan.sequence.order : std::vector<int>{};
   plan.holes = rivet_holes(plan.flat, realised, flange_rivets, self_rivets, order, options);
+}
+
+std::vector<BendToolRow> bend_tool_rows(const ManufacturingPlan& plan) {
+  std::vector<BendToolRow> rows;
+  if (!plan.press_checked) return rows;
+  for (const BendTooling& b : plan.press.tooling)
+    rows.push_back({b.tab, plan.tools.punches[b.punch].name, plan.tools.dies[b.die].name, b.flipped});
+  return rows;
 }
 
 void write_manufacturing_files(const std::string& dir, const RealisedPart& realised, const ManufacturingPlan& plan,
@@ -39,7 +58,7 @@ void write_manufacturing_files(const std::string& dir, const RealisedPart& reali
   const std::filesystem::path p(dir);
   write_text_file((p / "flat.dxf").string(), flat_pattern_dxf(plan.flat, d, plan.holes));
   write_text_file((p / "flat.svg").string(), flat_pattern_svg(plan.flat, d, plan.holes));
-  write_text_file((p / "bends.csv").string(), bend_table_csv(plan.flat, d.bend_order));
+  write_text_file((p / "bends.csv").string(), bend_table_csv(plan.flat, d.bend_order, bend_tool_rows(plan)));
   write_text_file((p / "rivets.csv").string(), rivet_table_csv(plan.flat, plan.holes));
   write_text_file((p / "part.obj").string(), part_obj(realised));
 }

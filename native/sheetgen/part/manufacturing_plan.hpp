@@ -7,6 +7,7 @@
 #include "sheetgen/part/bend_sequence.hpp"
 #include "sheetgen/part/exports.hpp"
 #include "sheetgen/part/flat_pattern.hpp"
+#include "sheetgen/part/press_brake.hpp"
 
 namespace sheetgen {
 
@@ -15,6 +16,9 @@ struct ManufacturingPlanOptions {
   BendSequenceOptions bends;
   ValidityOptions validity;  // stop_at_first etc. for the flat overlap check
   bool plan_bends_when_flat_fails = false;  // skip the (costlier) bend search when the flat pattern is already invalid
+  // Check the bend sequence on the standard press-brake tools (the answer's
+  // plan; the search does not yet): plan.press, and the tools in bends.csv.
+  bool press_brake = false;
 };
 
 struct ManufacturingPlan {
@@ -23,6 +27,9 @@ struct ManufacturingPlan {
   FlatPattern flat;
   ValidityReport flat_report;  // unfold status + outline overlap
   BendSequenceResult sequence; // order (tab indices) when ok
+  bool press_checked = false;  // options.press_brake and a bend sequence to check
+  ToolSet tools;               // the tool set checked against
+  PressBrakeResult press;      // the tools of each bend, or the bend no tool makes
   // Rivet and self-rivet holes; the rivets come from the FEM's layout, so the
   // caller fills them (set_rivet_holes) once the part is analysed. Empty: the drawings show none.
   std::vector<RivetHole> holes;
@@ -36,8 +43,12 @@ ManufacturingPlan plan_manufacturing(const Part& part, const SheetSpec& spec, co
 void set_rivet_holes(ManufacturingPlan& plan, const RealisedPart& realised, const std::vector<PlacedRivet>& flange_rivets,
                      const std::vector<PlacedSelfRivet>& self_rivets, const RivetHoleOptions& options);
 
+// The plan's press-brake tools per bend, for bends.csv (empty when unchecked).
+std::vector<BendToolRow> bend_tool_rows(const ManufacturingPlan& plan);
+
 // Writes DIR/flat.dxf, DIR/flat.svg (both with the plan's holes), DIR/bends.csv
-// (bending order when the plan has one, tab order otherwise), DIR/rivets.csv
+// (bending order when the plan has one, tab order otherwise; the tools when
+// the plan has them), DIR/rivets.csv
 // and DIR/part.obj; creates DIR. Throws std::runtime_error naming the file on failure.
 void write_manufacturing_files(const std::string& dir, const RealisedPart& realised, const ManufacturingPlan& plan,
                                const DrawingOptions& drawing = {});

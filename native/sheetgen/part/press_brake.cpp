@@ -113,30 +113,47 @@ ToolFrame tool_frame(const RealisedPart& rp, const Part& part, int k, double a) 
 }
 
 // How far a tab reaches from the bend line (o, along z, length L) in its own
-// plane (direction u), at the two ends of the line: the shorter, m.
-double flange_depth(const std::vector<Vec3>& corners, const Vec3& o, const Vec3& z, const Vec3& u, double L) {
-  double shortest = std::numeric_limits<double>::infinity();
-  for (double s0 : {1e-3 * L, (1 - 1e-3) * L}) {
-    double reach = 0;
-    for (size_t i = 0; i < corners.size(); ++i) {
-      const Vec3 p = corners[i] - o, q = corners[(i + 1) % corners.size()] - o;
-      const double sp = p.dot(z), sq = q.dot(z);
-      if ((sp - s0) * (sq - s0) > 0 || sp == sq) continue;
-      const double f = (s0 - sp) / (sq - sp);
-      reach = std::max(reach, p.dot(u) + f * (q.dot(u) - p.dot(u)));
-    }
-    shortest = std::min(shortest, reach);
+// plane (direction u) at the point s along the line, m.
+double flange_depth_at(const std::vector<Vec3>& corners, const Vec3& o, const Vec3& z, const Vec3& u, double s0) {
+  double reach = 0;
+  for (size_t i = 0; i < corners.size(); ++i) {
+    const Vec3 p = corners[i] - o, q = corners[(i + 1) % corners.size()] - o;
+    const double sp = p.dot(z), sq = q.dot(z);
+    if ((sp - s0) * (sq - s0) > 0 || sp == sq) continue;
+    const double f = (s0 - sp) / (sq - sp);
+    reach = std::max(reach, p.dot(u) + f * (q.dot(u) - p.dot(u)));
   }
-  return shortest;
+  return reach;
+}
+
+// A flange over the die: the share of the bend line along which it reaches
+// `need`, and its deepest reach (m), from 40 points along the line.
+struct FlangeReach {
+  double share = 0, deepest = 0;
+};
+FlangeReach flange_reach(const std::vector<Vec3>& corners, const Vec3& o, const Vec3& z, const Vec3& u, double L,
+                         double need) {
+  constexpr int kPoints = 40;
+  FlangeReach r;
+  for (int i = 0; i < kPoints; ++i) {
+    const double d = flange_depth_at(corners, o, z, u, (i + 0.5) / kPoints * L);
+    r.deepest = std::max(r.deepest, d);
+    if (d >= need) r.share += 1.0 / kPoints;
+  }
+  return r;
 }
 
 // ---- one bend with one punch and die
 
 struct Attempt {
   std::string reason;      // "" when the bend can be made
-  double progress = 0;     // how far it got: 0 before the stroke, (0, 1] through it
+  // How far it got: 0 the angles, 1 the flanges, 2 the open press, 3 to 4
+  // through the stroke; kMade when the bend can be made.
+  double progress = 0;
   double flange_need = 0;  // m, the die's shortest flange when that rule failed
 };
+
+constexpr double kMade = 5;
 
 // Which failure to report: the one that got furthest; among flange failures,
 // the one of the die with the shortest flange (the smallest die).
@@ -156,8 +173,8 @@ class BendCheck {
     if (std::string r = angle_rule(punch, die); !r.empty()) return {r, 0};
     ro_.angles[k_] = 0;
     realise_into(part_, rp_, ro_);
-    if (std::string r = flange_rule(die); !r.empty()) return {r, 0, die.min_flange_ratio * die.v_opening};
-    if (std::string r = fits_open_press(punch, die); !r.empty()) return {r, 0};
+    if (std::string r = flange_rule(die); !r.empty()) return {r, 1, die.min_flange_ratio * die.v_opening};
+    if (std::string r = fits_open_press(punch, die); !r.empty()) return {r, 2};
     build_tools(punch, die, flipped);
     const double target = part_.tabs[k_].params.theta3;
     const int steps = std::max(1, static_cast<int>(std::ceil(std::abs(target) / tools_.max_step)));
@@ -168,10 +185,10 @@ class BendCheck {
         char at[64];
         std::snprintf(at, sizeof at, " at %.0f deg of its %.0f deg", std::abs(ro_.angles[k_]) / kDeg,
                       std::abs(target) / kDeg);
-        return {r + at, static_cast<double>(s + 1) / (steps + 1)};
+        return {r + at, 3 + static_cast<double>(s + 1) / (steps + 1)};
       }
     }
-    return {"", 1};
+    return {"", kMade};
   }
 
  private:
@@ -179,26 +196,35 @@ class BendCheck {
     const double inner = M_PI - std::abs(part_.tabs[k_].params.theta3) - tools_.springback;
     char buf[160];
     if (inner < punch.tip_angle || inner < die.angle) {
-      std::snprintf(buf, sizeof buf, "the bend closes to %.0f deg under load, inside the %s tip (%.0f deg) or die (%.0f deg)",
-                    inner / kDeg, (inner < punch.tip_angle ? "punch's" : "die's"), punch.tip_angle / kDeg,
-                    die.angle / kDeg);
+      if (inner < punch.tip_angle)
+        std::snprintf(buf, sizeof buf, "the bend closes to %.0f deg under load, less than the punch %s's tip",
+                      inner / kDeg, punch.name.c_str());
+      else
+        std::snprintf(buf, sizeof buf, "the bend closes to %.0f deg under load, less than the die %s's V",
+                      inner / kDeg, die.name.c_str());
       return buf;
     }
     return "";
   }
 
+  // Each flange must rest on the die's shoulder along at least half of the
+  // bend line: a tab cut on a slant is short near one end and still bends.
   std::string flange_rule(const DieTool& die) const {
     const RealisedTab& tab = rp_.tabs[k_];
     const double L = (tab.bend_end() - tab.origin).norm();
     const Vec3 z = tab.x_axis, n_par = rp_.tabs[parent_].normal;
     const double need = die.min_flange_ratio * die.v_opening;
-    const double child = flange_depth(tab.corners, tab.origin, z, z.cross(n_par), L);
-    const double parent = flange_depth(rp_.tabs[parent_].corners, tab.origin, z, n_par.cross(z), L);
-    const double shortest = std::min(child, parent);
-    if (shortest >= need) return "";
-    char buf[200];
-    std::snprintf(buf, sizeof buf, "the flange of tab %d is %.1f mm, shorter than %.1f x V = %.1f mm on the die %s",
-                  child <= parent ? k_ : parent_, shortest * 1e3, die.min_flange_ratio, need * 1e3, die.name.c_str());
+    const FlangeReach child = flange_reach(tab.corners, tab.origin, z, z.cross(n_par), L, need);
+    const FlangeReach parent = flange_reach(rp_.tabs[parent_].corners, tab.origin, z, n_par.cross(z), L, need);
+    const bool child_short = child.share < 0.5;
+    if (!child_short && parent.share >= 0.5) return "";
+    const FlangeReach& f = child_short ? child : parent;
+    char buf[240];
+    std::snprintf(buf, sizeof buf,
+                  "the flange of tab %d reaches %.1f x V = %.1f mm on the die %s along %.0f %% of the bend line, "
+                  "not half (it is %.1f mm deep at most)",
+                  child_short ? k_ : parent_, die.min_flange_ratio, need * 1e3, die.name.c_str(), 100 * f.share,
+                  f.deepest * 1e3);
     return buf;
   }
 
@@ -282,31 +308,35 @@ ToolSet standard_tool_set(double t) {
   return s;
 }
 
+BendToolChoice choose_bend_tools(const Part& part, int k, const std::vector<double>& angles, const SheetSpec& spec,
+                                 const ToolSet& tools) {
+  if (tools.punches.empty() || tools.dies.empty()) throw std::invalid_argument("press brake: an empty tool set");
+  if (k <= 0 || k >= part.size() || static_cast<int>(angles.size()) != part.size())
+    throw std::invalid_argument("press brake: tab " + std::to_string(k) + " is not a bend of the part");
+  BendCheck check(part, spec, tools, angles, k);
+  Attempt nearest{"", -1};
+  for (size_t p = 0; p < tools.punches.size(); ++p)
+    for (size_t d = 0; d < tools.dies.size(); ++d)
+      for (bool flipped : {false, true}) {
+        const Attempt a = check.run(tools.punches[p], tools.dies[d], flipped);
+        if (a.reason.empty()) return {true, {k, static_cast<int>(p), static_cast<int>(d), flipped}, ""};
+        if (nearer(a, nearest)) nearest = a;
+      }
+  return {false, {k, -1, -1, false}, "bend of tab " + std::to_string(k) + ": " + nearest.reason};
+}
+
 PressBrakeResult check_press_brake(const Part& part, const std::vector<int>& order, const SheetSpec& spec,
                                    const ToolSet& tools) {
-  if (tools.punches.empty() || tools.dies.empty()) throw std::invalid_argument("check_press_brake: an empty tool set");
   PressBrakeResult r;
   std::vector<double> angles(part.size(), 0.0);
   for (int k : order) {
-    if (k <= 0 || k >= part.size()) throw std::invalid_argument("check_press_brake: order names a tab that is not a bend");
-    BendCheck check(part, spec, tools, angles, k);
-    Attempt nearest{"", -1};
-    for (size_t p = 0; p < tools.punches.size() && nearest.progress < 1; ++p)
-      for (size_t d = 0; d < tools.dies.size() && nearest.progress < 1; ++d)
-        for (bool flipped : {false, true}) {
-          const Attempt a = check.run(tools.punches[p], tools.dies[d], flipped);
-          if (a.reason.empty()) {
-            r.tooling.push_back({k, static_cast<int>(p), static_cast<int>(d), flipped});
-            nearest = {"", 1};
-            break;
-          }
-          if (nearer(a, nearest)) nearest = a;
-        }
-    if (nearest.progress < 1) {
+    const BendToolChoice c = choose_bend_tools(part, k, angles, spec, tools);
+    if (!c.ok) {
       r.failed_tab = k;
-      r.message = "bend of tab " + std::to_string(k) + ": " + nearest.reason;
+      r.message = c.reason;
       return r;
     }
+    r.tooling.push_back(c.tooling);
     angles[k] = part.tabs[k].params.theta3;
   }
   r.ok = true;

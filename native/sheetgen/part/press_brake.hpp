@@ -71,6 +71,17 @@ struct PressBrakeResult {
   std::string message;               // why, for the nearest tool (empty when ok)
 };
 
+// Bend `k` with the other tabs at `angles` (rad, per tab; k's own is ignored):
+// the first punch and die of `tools` that make it (ok), or why none does
+// (the failure that got furthest).
+struct BendToolChoice {
+  bool ok = false;
+  BendTooling tooling;
+  std::string reason;
+};
+BendToolChoice choose_bend_tools(const Part& part, int k, const std::vector<double>& angles, const SheetSpec& spec,
+                                 const ToolSet& tools);
+
 // Checks `order` (every bent tab once, as check_bend_order takes it): for each
 // bend, every punch and die of `tools` in order, the part as it is and turned
 // over, until one makes the bend.

@@ -184,7 +184,9 @@ void place_rivets(const Problem& answer_scene, int li, LoadOutcome& out) {
 void plan_answer(const Problem& answer_scene, int li, LoadOutcome& out) {
   if (out.part.segments.empty()) return;
   out.realised = realise(out.part.part);
-  out.plan = plan_manufacturing(out.part.part, SheetSpec::from(answer_scene));
+  ManufacturingPlanOptions mo;
+  mo.press_brake = true;
+  out.plan = plan_manufacturing(out.part.part, SheetSpec::from(answer_scene), mo);
   if (out.ok) place_rivets(answer_scene, li, out);
 }
 

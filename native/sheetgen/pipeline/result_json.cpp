@@ -66,6 +66,12 @@ void add_part_fields(json& p, const Problem& problem, const LoadOutcome& o) {
     self_rivets.push_back({{"tabs", {t.polygon_a, t.polygon_b}}, {"points", {v3(t.point_a), v3(t.point_b)}}});
   p["self_rivets"] = self_rivets;
   p["bend_sequence"] = o.plan.sequence.order;
+  if (o.plan.press_checked) {
+    json tools = json::array();
+    for (const BendToolRow& r : bend_tool_rows(o.plan))
+      tools.push_back({{"tab", r.tab}, {"punch", r.punch}, {"die", r.die}, {"turned_over", r.turned_over}});
+    p["press_brake"] = {{"ok", o.plan.press.ok}, {"message", o.plan.press.message}, {"tools", tools}};
+  }
   p["flat_pattern"] = flat_pattern_json(o.plan.flat, o.plan.sequence.order, o.plan.holes);
 }
 

@@ -79,13 +79,13 @@ TEST(Exports, BendTableObjJson) {
   std::istringstream in(csv);
   std::string line;
   std::getline(in, line);
-  EXPECT_EQ(line, "order,angle_deg,direction,inside_radius_mm,length_mm,tab");
+  EXPECT_EQ(line, "order,angle_deg,direction,inside_radius_mm,length_mm,tab,punch,die,turned_over");
   std::getline(in, line);
-  EXPECT_EQ(line, "1,45.000000,DOWN,6.400000,20.000000,3");
+  EXPECT_EQ(line, "1,45.000000,DOWN,6.400000,20.000000,3,,,");
   std::getline(in, line);
-  EXPECT_EQ(line, "2,90.000000,UP,6.400000,20.000000,1");
+  EXPECT_EQ(line, "2,90.000000,UP,6.400000,20.000000,1,,,");
   std::getline(in, line);
-  EXPECT_EQ(line, "3,90.000000,DOWN,6.400000,16.000000,2");
+  EXPECT_EQ(line, "3,90.000000,DOWN,6.400000,16.000000,2,,,");
 
   const std::string obj = part_obj(rp);
   int v = 0, f = 0;

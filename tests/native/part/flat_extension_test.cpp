@@ -94,7 +94,7 @@ TEST(FlatExtension, BendTableNumbersAndSequenceCountOnlyRealBends) {
   const std::vector<int> number = bend_numbers(flat, {});
   EXPECT_EQ(number, (std::vector<int>{0, 0, 1}));
   const std::string csv = bend_table_csv(flat);
-  EXPECT_EQ(csv, "order,angle_deg,direction,inside_radius_mm,length_mm,tab\n1,90.000000,UP,6.400000,20.000000,2\n");
+  EXPECT_EQ(csv, "order,angle_deg,direction,inside_radius_mm,length_mm,tab,punch,die,turned_over\n1,90.000000,UP,6.400000,20.000000,2,,,\n");
   const BendSequenceResult seq = plan_bend_sequence(part, s);
   ASSERT_TRUE(seq.ok()) << seq.message;
   EXPECT_EQ(seq.order, (std::vector<int>{2}));

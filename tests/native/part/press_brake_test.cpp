@@ -10,6 +10,7 @@
 #include <string>
 
 #include "sheetgen/part/bend_sequence.hpp"
+#include "sheetgen/part/manufacturing_plan.hpp"
 #include "sheetgen/part/press_brake.hpp"
 #include "../common/sheet_fixture.hpp"
 
@@ -69,6 +70,31 @@ TEST(PressBrake, ReturnLipNeedsTheGooseneck) {
   EXPECT_TRUE(check_press_brake(channel_with_lip(0.040, 0.015), {2, 1}, spec(), only_punch(0)).ok);
 }
 
+TEST(PressBrake, TheBendTableNamesEachBendsTools) {
+  // The answer's plan checks its bend sequence on the standard tools; bends.csv names them.
+  const Part part = channel_with_lip(0.025, 0.015);
+  ManufacturingPlanOptions o;
+  o.press_brake = true;
+  const ManufacturingPlan plan = plan_manufacturing(part, spec(), o);
+  ASSERT_TRUE(plan.ok()) << plan.message;
+  ASSERT_TRUE(plan.press_checked);
+  ASSERT_TRUE(plan.press.ok) << plan.press.message;
+  // The part-only planner would bend the leg first (shallow first); then the
+  // strip stands in the way of the lip's bend (it hits the gooseneck at 76 deg,
+  // the straight punch earlier), so the press-aware planner bends the lip first.
+  ASSERT_EQ(plan.sequence.order, (std::vector<int>{2, 1}));
+  const std::string csv = bend_table_csv(plan.flat, plan.sequence.order, bend_tool_rows(plan));
+  EXPECT_NE(csv.find("\n1,90.000000,UP,6.400000,60.000000,2,straight 30 deg,V12.8 85 deg,no\n"), std::string::npos) << csv;
+  EXPECT_NE(csv.find("\n2,90.000000,UP,6.400000,60.000000,1,gooseneck 30 deg,V12.8 85 deg,no\n"), std::string::npos)
+      << csv;
+  EXPECT_EQ(plan_bend_sequence(part, spec()).order, (std::vector<int>{1, 2}));
+  EXPECT_FALSE(check_press_brake(part, {1, 2}, spec(), plan.tools).ok);
+  // Without the option nothing is checked and the columns stay empty.
+  const ManufacturingPlan plain = plan_manufacturing(part, spec());
+  EXPECT_FALSE(plain.press_checked);
+  EXPECT_TRUE(bend_tool_rows(plain).empty());
+}
+
 TEST(PressBrake, FlangeShorterThanTheSmallestDieTakes) {
   // The smallest die: V = 6 t = 9.6 mm; its shortest flange 0.7 V = 6.72 mm.
   Part part = fixtures::square_base();
@@ -76,7 +102,8 @@ TEST(PressBrake, FlangeShorterThanTheSmallestDieTakes) {
   const PressBrakeResult r = check_press_brake(part, {1}, spec(), standard_tool_set(spec().thickness));
   ASSERT_FALSE(r.ok);
   EXPECT_EQ(r.failed_tab, 1);
-  EXPECT_NE(r.message.find("the flange of tab 1 is 5.0 mm, shorter than 0.7 x V = 6.7 mm on the die V9.6 85 deg"),
+  EXPECT_NE(r.message.find("the flange of tab 1 reaches 0.7 x V = 6.7 mm on the die V9.6 85 deg along 0 % of the "
+                           "bend line, not half (it is 5.0 mm deep at most)"),
             std::string::npos) << r.message;
   // 7 mm: too short for the 8 t die (8.96 mm), long enough for the 6 t one.
   Part longer = fixtures::square_base();
@@ -84,6 +111,19 @@ TEST(PressBrake, FlangeShorterThanTheSmallestDieTakes) {
   const PressBrakeResult ok = check_press_brake(longer, {1}, spec(), standard_tool_set(spec().thickness));
   ASSERT_TRUE(ok.ok) << ok.message;
   EXPECT_EQ(ok.tooling[0].die, 1);
+}
+
+TEST(PressBrake, ASlantedFlangeNeedsTheMinimumAlongHalfItsBendLine) {
+  // A 30 mm root whose far edge is turned by theta1 = 20 deg about its
+  // midpoint (l = 8 mm there): the depth runs linearly along the root from
+  // 8 - 15 tan 20 = 2.54 mm to 13.46 mm. It reaches the 8 t die's 8.96 mm on
+  // 41 % of the line (42.5 % of the 40 points): refused; the 6 t die's
+  // 6.72 mm on 62 %: taken. Measured at both ends only, neither die would do.
+  Part part = fixtures::square_base();
+  part.add_tab(0, 0, {0.005, 0.03, 0.008, 20 * kDeg, 0, 90 * kDeg});
+  const PressBrakeResult r = check_press_brake(part, {1}, spec(), standard_tool_set(spec().thickness));
+  ASSERT_TRUE(r.ok) << r.message;
+  EXPECT_EQ(r.tooling[0].die, 1);
 }
 
 TEST(PressBrake, DownturnedFlangeMeetsTheBed) {
