@@ -143,6 +143,24 @@ FlangeReach flange_reach(const std::vector<Vec3>& corners, const Vec3& o, const 
   return r;
 }
 
+// The highest Y of segment a-b where |X| <= half_width (0 when it misses the slab).
+double highest_in_slab(const Vec3& a, const Vec3& b, double half_width) {
+  double t0 = 0, t1 = 1;
+  const double dx = b.x() - a.x();
+  for (double bound : {-half_width, half_width}) {
+    const bool upper = bound > 0;
+    if (dx == 0) {
+      if (upper ? a.x() > bound : a.x() < bound) return 0;
+      continue;
+    }
+    const double t = (bound - a.x()) / dx;
+    if ((dx > 0) == upper) t1 = std::min(t1, t);
+    else t0 = std::max(t0, t);
+  }
+  if (t0 > t1) return 0;
+  return std::max(a.y() + t0 * (b.y() - a.y()), a.y() + t1 * (b.y() - a.y()));
+}
+
 // ---- one bend with one punch and die
 
 struct Attempt {
@@ -228,11 +246,17 @@ class BendCheck {
     return buf;
   }
 
+  // Only what lies under the ram must pass below the open punch: the rest of
+  // the part stands in front of the machine or behind it.
   std::string fits_open_press(const PunchTool& punch, const DieTool& die) const {
     const ToolFrame f = tool_frame(rp_, part_, k_, 0);
+    const double rw = tools_.machine.ram_width / 2;
     double top = 0;
     for (const RealisedTab& tab : rp_.tabs)
-      for (const Vec3& c : tab.corners) top = std::max(top, f.point(c).y());
+      for (size_t i = 0; i < tab.corners.size(); ++i) {
+        const Vec3 a = f.point(tab.corners[i]), b = f.point(tab.corners[(i + 1) % tab.corners.size()]);
+        top = std::max(top, highest_in_slab(a, b, rw));
+      }
     const double room = tools_.machine.open_height - die.height - punch.height;
     if (top + t_ / 2 <= room) return "";
     char buf[160];

@@ -1,9 +1,9 @@
 // Press-brake feasibility (part/press_brake.hpp) on parts whose outcome
 // follows from the tools' drawn dimensions: a return lip a straight punch
 // cannot clear and a gooseneck can, a flange shorter than the smallest die
-// takes, a downturned flange that meets the bed, and a tall flange that does
-// not fit under the open punch. Sheet 1.6 mm: V-dies of 9.6, 12.8, 16 and
-// 19.2 mm (85 deg) and 12.8 mm (30 deg).
+// takes, a downturned flange that meets the bed, a tall flange that does not
+// fit under the open punch and one that meets the ram. Sheet 1.6 mm: V-dies
+// of 9.6, 12.8, 16 and 19.2 mm (85 deg) and 12.8 mm (30 deg).
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -146,16 +146,38 @@ TEST(PressBrake, DownturnedFlangeMeetsTheBed) {
   }
 }
 
-TEST(PressBrake, TallFlangeDoesNotFitUnderTheOpenPunch) {
+// A 60 x `depth` mm strip: tab 1 stands 250 mm high on its back edge, tab 2
+// (20 mm, 90 deg) is bent on its front edge after it.
+Part strip_with_tall_flange(double depth) {
+  Part p = make_base_part({Vec3(0, 0, 0), Vec3(0.06, 0, 0), Vec3(0.06, depth, 0), Vec3(0, depth, 0)}, Vec3::UnitZ());
+  p.add_tab(0, 2, {0.015, 0.03, 0.25, 0, 0, 90 * kDeg});
+  p.add_tab(0, 0, {0.015, 0.03, 0.02, 0, 0, 90 * kDeg});
+  return p;
+}
+
+TEST(PressBrake, TallFlangeUnderTheRamDoesNotFitUnderTheOpenPunch) {
   // Open height 400 mm - die 60 mm - punch 120 mm: 220 mm under the punch.
-  // A flange standing 250 mm at the back of the strip does not go in.
-  Part part = fixtures::square_base(0.04);
-  part.add_tab(0, 2, {0.005, 0.03, 0.25, 0, 0, 90 * kDeg});
-  part.add_tab(0, 0, {0.005, 0.03, 0.02, 0, 0, 90 * kDeg});
-  const PressBrakeResult r = check_press_brake(part, {1, 2}, spec(), standard_tool_set(spec().thickness));
+  // On a 20 mm strip the 250 mm flange stands at x = -20 mm, under the 60 mm
+  // wide ram: the part does not go in.
+  const PressBrakeResult r =
+      check_press_brake(strip_with_tall_flange(0.02), {1, 2}, spec(), standard_tool_set(spec().thickness));
   ASSERT_FALSE(r.ok);
   EXPECT_EQ(r.failed_tab, 2);
-  EXPECT_NE(r.message.find("more than the 220 mm under the open punch"), std::string::npos) << r.message;
+  EXPECT_NE(r.message.find("the part stands 251 mm above the die, more than the 220 mm under the open punch"),
+            std::string::npos) << r.message;
+}
+
+TEST(PressBrake, TallFlangeBesideTheRamMeetsItAsTheStripRises) {
+  // On a 40 mm strip it stands at x = -40 mm, in front of the ram (half-width
+  // 30 mm), and goes in; but the strip rises with the bend and tips the
+  // flange's top towards the ram: at 4 deg of the bend (2 deg of tilt) it is
+  // at x = -40 cos 2 deg + 250 sin 2 deg = -31.26 mm, 1.26 mm from the ram's
+  // face, inside the clearance t/2 + 0.5 mm = 1.3 mm (at 2 deg: 5.6 mm).
+  const PressBrakeResult r =
+      check_press_brake(strip_with_tall_flange(0.04), {1, 2}, spec(), standard_tool_set(spec().thickness));
+  ASSERT_FALSE(r.ok);
+  EXPECT_EQ(r.failed_tab, 2);
+  EXPECT_NE(r.message.find("tab 1 hits the ram above the punch at 4 deg of its 90 deg"), std::string::npos) << r.message;
 }
 
 TEST(PressBrake, AcuteBendTakesTheAcuteDie) {
