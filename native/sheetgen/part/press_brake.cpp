@@ -268,11 +268,15 @@ class BendCheck {
   void build_tools(const PunchTool& punch, const DieTool& die, bool flipped) {
     const RealisedTab& tab = rp_.tabs[k_];
     const double L = (tab.bend_end() - tab.origin).norm(), top = t_ / 2, bottom = -t_ / 2;
+    // Segmented (box-and-pan) punches are set up a little shorter than the
+    // bend line, so that flanges standing at its ends, a box's sides, clear
+    // them: the punch stops the clearance short of each end.
+    const double inset = std::min(t_ / 2 + tools_.gap + 1e-6, 0.25 * L);
     punch_.clear();
     for (const auto& piece : punch.pieces) {
       std::vector<Vec2> shifted;
       for (const Vec2& v : piece) shifted.push_back(v + Vec2(0, top));
-      punch_.push_back(make_prism(flipped ? mirrored(shifted) : shifted, 0, L));
+      punch_.push_back(make_prism(flipped ? mirrored(shifted) : shifted, inset, L - inset));
     }
     // The die's top a hair below the clearance: the flat sheet lies on it by design.
     const double v = die.v_opening / 2, depth = v / std::tan(die.angle / 2), w = die.width / 2, h = die.height;
