@@ -36,9 +36,15 @@ else
   cmake --build "$BUILD_DIR" -j "$JOBS"
 fi
 
-# Third-party leaks we cannot fix (none known today; one `leak:symbol` per line).
+# Third-party leaks we cannot fix, one `leak:<symbol or module>` per line.
+# OpenCASCADE's STEP writer keeps objects in static registries (its
+# IFSelect_Editor instances and GeomToStep's cached directions among them) that
+# are never freed: LeakSanitizer reports them at exit of every test that writes
+# a STEP file. Debian's OCCT has no frame pointers, so the reports stop at the
+# OCCT frame that allocated (Standard_MMgrRaw::Allocate) and can only be matched
+# by module.
 SUPP="$BUILD_DIR/lsan.supp"
-: >"$SUPP"
+printf '%s\n' "leak:libTKernel.so" "leak:libTKXSBase.so" "leak:libTKSTEP.so" >"$SUPP"
 export ASAN_OPTIONS="${ASAN_OPTIONS:-detect_leaks=1:strict_string_checks=1:detect_stack_use_after_return=1:check_initialization_order=1:abort_on_error=0:halt_on_error=1}"
 export UBSAN_OPTIONS="${UBSAN_OPTIONS:-print_stacktrace=1:halt_on_error=1}"
 export LSAN_OPTIONS="${LSAN_OPTIONS:-suppressions=$SUPP}"
