@@ -1,5 +1,6 @@
 #include "sheetgen/part/manufacturing_plan.hpp"
 
+#include <algorithm>
 #include <filesystem>
 #include <stdexcept>
 
@@ -23,8 +24,11 @@ ManufacturingPlan plan_manufacturing(const Part& part, const SheetSpec& spec, co
     // An order the press brake can make, when there is one; otherwise the
     // part-only order stays, and plan.press says which bend no tool makes.
     plan.tools = standard_tool_set(spec.thickness);
+    // A smaller budget than the part-only search's: each step also tries the
+    // tool set (up to 20 punch, die and side combinations through the stroke).
     BendSequenceOptions with_tools = o.bends;
     with_tools.tools = &plan.tools;
+    with_tools.max_sweeps = std::min(o.bends.max_sweeps, 200);
     BendSequenceResult pressed = plan_bend_sequence(part, spec, with_tools);
     if (pressed.ok()) plan.sequence = std::move(pressed);
     plan.press = check_press_brake(part, plan.sequence.order, spec, plan.tools);
