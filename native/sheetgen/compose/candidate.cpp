@@ -10,6 +10,14 @@
 
 namespace sheetgen {
 
+namespace {
+// The press-aware order search's budget per candidate: a quarter of the
+// answer's (ManufacturingPlanOptions::press_brake_sweeps), because the search
+// pays it on every candidate it analyses; the part-only order is checked first
+// and passes for most parts.
+constexpr int kSearchPressBrakeSweeps = 50;
+}  // namespace
+
 Candidate evaluate_part(const Problem& problem, const Environment& env, int load_index, Candidate c, double element_size,
                         double bend_cost, ShellSolver* solver, double cost_bound) {
   c.geometry_ok = false;
@@ -29,7 +37,7 @@ Candidate evaluate_part(const Problem& problem, const Environment& env, int load
     return c;
   }
   const SheetSpec spec = SheetSpec::from(problem);
-  const ManufacturingPlan plan = plan_manufacturing(c.part, spec);
+  ManufacturingPlan plan = plan_manufacturing(c.part, spec);
   c.area = plan.flat.area();
   c.cost = c.area + bend_cost * c.bends;
   if (!plan.ok()) {
@@ -37,11 +45,21 @@ Candidate evaluate_part(const Problem& problem, const Environment& env, int load
     c.message = plan.message;
     return c;
   }
-  c.geometry_ok = true;
   if (c.cost >= cost_bound) {
+    c.geometry_ok = true;
     c.over_cost_bound = true;
     return c;
   }
+  // After the cost bound: a candidate the bound drops is never bent.
+  if (problem.manufacturing.press_brake_required) {
+    plan_press_brake(plan, c.part, spec, {}, kSearchPressBrakeSweeps);
+    if (!plan.press.ok) {
+      c.reason = ValidityReason::PressBrake;
+      c.message = "no bend order the press brake's standard tools make: " + plan.press.message;
+      return c;
+    }
+  }
+  c.geometry_ok = true;
   analyse_candidate(problem, load_index, c, element_size, solver);
   return c;
 }

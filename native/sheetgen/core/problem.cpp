@@ -395,7 +395,13 @@ void parse_settings(const JsonNode& root, Problem& p) {
   if (m) {
     m->expect_object();
     reject_unknown(*m, {"bend_radius", "k_factor", "kerf", "min_flange", "min_tab_width", "min_tab_length", "max_tab_length",
-                        "min_bend_angle", "max_bend_angle", "max_skew", "rivet_diameter", "rivet_edge_distance", "rivet_pitch"});
+                        "min_bend_angle", "max_bend_angle", "max_skew", "rivet_diameter", "rivet_edge_distance", "rivet_pitch",
+                        "press_brake"});
+    if (std::optional<JsonNode> pb = m->find("press_brake")) {
+      const std::string use = pb->as_string();
+      if (use != "report" && use != "require") pb->fail("must be \"report\" or \"require\", got \"" + use + "\"");
+      mf.press_brake_required = use == "require";
+    }
   }
   auto pos = [&](const char* key, double fallback) { return m ? m->positive_or(key, fallback) : fallback; };
   auto nonneg = [&](const char* key, double fallback) { return m ? m->non_negative_or(key, fallback) : fallback; };

@@ -112,6 +112,11 @@ struct Manufacturing {  // lengths m, angles rad; defaults depend on thickness t
   double rivet_diameter = 0;     // default: 2 t rounded up to 1/32 in, at least 3.2 mm (1/8 in)
   double rivet_edge_distance = 0;// default 2 * rivet_diameter (MIL-HDBK practice)
   double rivet_pitch = 0;        // default 6 * rivet_diameter
+  // The standard press-brake tools (part/press_brake.hpp). Off ("report", the
+  // default): the answer's bend sequence is checked and the result says
+  // whether the tools make it. On ("require"): a candidate they cannot bend is
+  // invalid in the search as well.
+  bool press_brake_required = false;
 };
 
 struct SearchSettings {

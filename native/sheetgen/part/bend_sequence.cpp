@@ -149,6 +149,7 @@ BendSequenceResult plan_bend_sequence(const Part& part, const SheetSpec& spec, c
   std::string mask(n, '0');
   std::unordered_set<std::string> dead;
   std::vector<int> order;
+  std::vector<BendTooling> tooling;
   BendCollision deepest;
   int deepest_level = -1;
   std::string deepest_press;  // the press brake's reason, when its failure was the deepest
@@ -182,6 +183,7 @@ BendSequenceResult plan_bend_sequence(const Part& part, const SheetSpec& spec, c
           sim.set_angle(k, 0.0);
           continue;
         }
+        tooling.push_back(tools.tooling);
       }
       done[k] = part.tabs[k].params.theta3;
       sim.set_angle(k, part.tabs[k].params.theta3);
@@ -189,6 +191,7 @@ BendSequenceResult plan_bend_sequence(const Part& part, const SheetSpec& spec, c
       order.push_back(k);
       if (dfs()) return true;
       order.pop_back();
+      if (o.tools) tooling.pop_back();
       mask[k] = '0';
       sim.set_angle(k, 0.0);
       done[k] = 0.0;
@@ -199,6 +202,7 @@ BendSequenceResult plan_bend_sequence(const Part& part, const SheetSpec& spec, c
   };
   if (dfs()) {
     r.order = order;
+    r.tooling = tooling;
     return r;
   }
   r.status = ValidityReason::NoBendSequence;

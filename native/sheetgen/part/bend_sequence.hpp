@@ -33,6 +33,7 @@ struct BendSequenceResult {
   ValidityReason status = ValidityReason::Ok;  // Ok or NoBendSequence
   std::string message;
   std::vector<int> order;     // tab indices in bending order (every bent tab when ok; flat extensions are not bent)
+  std::vector<BendTooling> tooling;  // with options.tools and ok: the punch and die of each bend of `order`
   BendCollision collision;    // when not ok: the collision of the checked order / the deepest failure of the search
   int sweeps = 0;             // bend sweeps simulated
   bool exhausted = false;     // plan_bend_sequence stopped at max_sweeps

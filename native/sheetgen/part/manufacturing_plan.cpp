@@ -20,21 +20,31 @@ ManufacturingPlan plan_manufacturing(const Part& part, const SheetSpec& spec, co
     plan.status = plan.sequence.status;
     plan.message = plan.sequence.message;
   }
-  if (o.press_brake && plan.sequence.ok()) {
-    // An order the press brake can make, when there is one; otherwise the
-    // part-only order stays, and plan.press says which bend no tool makes.
-    plan.tools = standard_tool_set(spec.thickness);
-    // A smaller budget than the part-only search's: each step also tries the
-    // tool set (up to 20 punch, die and side combinations through the stroke).
-    BendSequenceOptions with_tools = o.bends;
-    with_tools.tools = &plan.tools;
-    with_tools.max_sweeps = std::min(o.bends.max_sweeps, 200);
-    BendSequenceResult pressed = plan_bend_sequence(part, spec, with_tools);
-    if (pressed.ok()) plan.sequence = std::move(pressed);
-    plan.press = check_press_brake(part, plan.sequence.order, spec, plan.tools);
-    plan.press_checked = true;
-  }
+  if (o.press_brake && plan.sequence.ok()) plan_press_brake(plan, part, spec, o.bends, o.press_brake_sweeps);
   return plan;
+}
+
+void plan_press_brake(ManufacturingPlan& plan, const Part& part, const SheetSpec& spec,
+                      const BendSequenceOptions& bends, int sweeps) {
+  plan.tools = standard_tool_set(spec.thickness);
+  plan.press_checked = true;
+  // The press-aware search walks the orders in the part-only search's order,
+  // so when every bend of the part-only order can be made it would return
+  // that same order: checking it first gives the same answer for one order's cost.
+  plan.press = check_press_brake(part, plan.sequence.order, spec, plan.tools);
+  if (plan.press.ok) return;
+  BendSequenceOptions with_tools = bends;
+  with_tools.tools = &plan.tools;
+  with_tools.max_sweeps = std::min(bends.max_sweeps, sweeps);
+  BendSequenceResult pressed = plan_bend_sequence(part, spec, with_tools);
+  // No order found: plan.press keeps the part-only order's first failure, a
+  // named bend and why, which the order the drawings show does have.
+  if (!pressed.ok()) return;
+  plan.press.ok = true;
+  plan.press.tooling = pressed.tooling;
+  plan.press.failed_tab = -1;
+  plan.press.message.clear();
+  plan.sequence = std::move(pressed);
 }
 
 void set_rivet_holes(ManufacturingPlan& plan, const RealisedPart& realised, const std::vector<PlacedRivet>& flange_rivets,

@@ -32,6 +32,7 @@ const char* to_string(ValidityReason r) {
     case ValidityReason::ReliefDoesNotFit: return "relief_does_not_fit";
     case ValidityReason::FlatPatternOverlap: return "flat_pattern_overlap";
     case ValidityReason::NoBendSequence: return "no_bend_sequence";
+    case ValidityReason::PressBrake: return "press_brake";
   }
   return "unknown";
 }

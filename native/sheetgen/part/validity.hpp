@@ -37,6 +37,7 @@ enum class ValidityReason : std::uint8_t {
   ReliefDoesNotFit,       // a bend relief leaves its parent or the bend ends too close to a corner
   FlatPatternOverlap,     // flat pieces overlap or come closer than the kerf
   NoBendSequence,         // every bend order examined collides while folding
+  PressBrake,             // no bend order examined can be made with the press brake's tools
 };
 const char* to_string(ValidityReason reason);
 

@@ -68,12 +68,23 @@ TEST(Problem, ValidProblemGetsDocumentedDefaults) {
   EXPECT_DOUBLE_EQ(p.material.youngs_modulus, 73.1e9);
   EXPECT_DOUBLE_EQ(p.manufacturing.bend_radius, 4 * 1.6e-3);                 // R = 4 t
   EXPECT_DOUBLE_EQ(p.manufacturing.min_flange, 4 * 1.6e-3 + 4 * 1.6e-3);     // 4 t + R
+  EXPECT_FALSE(p.manufacturing.press_brake_required);                       // "report"
   EXPECT_DOUBLE_EQ(p.requirements.safety_factor, 1.5);
   EXPECT_DOUBLE_EQ(p.requirements.compliance_limit(100.0), 100.0 * 1e-3);    // default 1 mm deflection
   EXPECT_EQ(p.search.chains, 10);
   EXPECT_EQ(p.search.iterations, 1000);
   EXPECT_TRUE(p.loads[0].rotation.isApprox(Eigen::Quaterniond::Identity()));
   EXPECT_EQ(run_check(path).exit_code, 0);
+}
+
+TEST(Problem, PressBrakeIsRequiredOnlyWhenAsked) {
+  Files files;
+  for (const char* use : {"report", "require"}) {
+    json j = valid_problem();
+    j["manufacturing"]["press_brake"] = use;
+    const Problem p = load_problem(files.write(std::string("press_") + use + ".json", j.dump()));
+    EXPECT_EQ(p.manufacturing.press_brake_required, std::string(use) == "require") << use;
+  }
 }
 
 struct BadCase {
@@ -104,6 +115,8 @@ TEST(Problem, EveryBadInputGivesOneSentenceAndExitCodeOne) {
       {"unknown field", [](json& j, Files&) { j["requirments"] = json::object(); }, "(top level)", "unknown field 'requirments'"},
       {"wrong format", [](json& j, Files&) { j["format"] = "sheetgen-problem/9"; }, "format", "unsupported format"},
       {"unknown rivet mesh", [](json& j, Files&) { j["rivet_areas"][0]["mesh"] = "ceiling"; }, "rivet_areas[0].mesh", "no environment mesh is named 'ceiling'"},
+      {"press-brake use", [](json& j, Files&) { j["manufacturing"]["press_brake"] = "always"; }, "manufacturing.press_brake",
+       "must be \"report\" or \"require\", got \"always\""},
       {"inline triangle index", [](json& j, Files&) { j["environment"]["meshes"][1]["triangles"][1][2] = 9; }, "environment.meshes[1].triangles[1][2]", "out of range"},
   };
   Files files;

@@ -190,5 +190,70 @@ TEST(PressBrake, AcuteBendTakesTheAcuteDie) {
   EXPECT_EQ(r.tooling[0].die, 4);
 }
 
+TEST(PressBrake, ThePlanKeepsThePartOnlyOrderWhenTheToolsMakeIt) {
+  // A 40 mm strip with a 50 mm flange turned down at its back edge and a 20 mm
+  // one up at its front (DownturnedFlangeMeetsTheBed): the part-only order
+  // suits the press, and the plan keeps it with the tools the check chose.
+  Part part = fixtures::square_base(0.04);
+  part.add_tab(0, 2, {0.005, 0.03, 0.050, 0, 0, -90 * kDeg});
+  part.add_tab(0, 0, {0.005, 0.03, 0.02, 0, 0, 90 * kDeg});
+  ManufacturingPlanOptions o;
+  o.press_brake = true;
+  const ManufacturingPlan plan = plan_manufacturing(part, spec(), o);
+  ASSERT_TRUE(plan.press.ok) << plan.press.message;
+  const std::vector<int> part_only = plan_bend_sequence(part, spec()).order;
+  EXPECT_EQ(plan.sequence.order, part_only);
+  const PressBrakeResult check = check_press_brake(part, part_only, spec(), plan.tools);
+  ASSERT_EQ(plan.press.tooling.size(), check.tooling.size());
+  for (size_t i = 0; i < check.tooling.size(); ++i) {
+    EXPECT_EQ(plan.press.tooling[i].tab, check.tooling[i].tab);
+    EXPECT_EQ(plan.press.tooling[i].punch, check.tooling[i].punch);
+    EXPECT_EQ(plan.press.tooling[i].die, check.tooling[i].die);
+    EXPECT_EQ(plan.press.tooling[i].flipped, check.tooling[i].flipped);
+  }
+}
+
+TEST(PressBrake, ThePressAwareSearchReturnsTheToolsOfItsOrder) {
+  // The channel with a return lip: the search's order {2, 1} and, per bend,
+  // the same punch and die as check_press_brake chooses for that order.
+  const Part part = channel_with_lip(0.025, 0.015);
+  const ToolSet tools = standard_tool_set(spec().thickness);
+  BendSequenceOptions o;
+  o.tools = &tools;
+  const BendSequenceResult r = plan_bend_sequence(part, spec(), o);
+  ASSERT_TRUE(r.ok()) << r.message;
+  ASSERT_EQ(r.order, (std::vector<int>{2, 1}));
+  const PressBrakeResult check = check_press_brake(part, r.order, spec(), tools);
+  ASSERT_TRUE(check.ok);
+  ASSERT_EQ(r.tooling.size(), 2u);
+  for (size_t i = 0; i < 2; ++i) {
+    EXPECT_EQ(r.tooling[i].tab, r.order[i]);
+    EXPECT_EQ(r.tooling[i].punch, check.tooling[i].punch);
+    EXPECT_EQ(r.tooling[i].die, check.tooling[i].die);
+  }
+  // The part-only search returns no tools.
+  EXPECT_TRUE(plan_bend_sequence(part, spec()).tooling.empty());
+}
+
+TEST(PressBrake, APartNoOrderSuitsKeepsItsPlanAndNamesTheFailure) {
+  // A 20 mm strip with a 250 mm flange up on each long edge: whichever is
+  // bent first stands 20 mm from the other's bend line, under the ram, and
+  // 251 mm high where 220 mm is free. The plan itself stays ok (the part
+  // folds); plan.press says which bend fails and why.
+  Part part = make_base_part({Vec3(0, 0, 0), Vec3(0.06, 0, 0), Vec3(0.06, 0.02, 0), Vec3(0, 0.02, 0)}, Vec3::UnitZ());
+  part.add_tab(0, 2, {0.015, 0.03, 0.25, 0, 0, 90 * kDeg});
+  part.add_tab(0, 0, {0.015, 0.03, 0.25, 0, 0, 90 * kDeg});
+  ManufacturingPlanOptions o;
+  o.press_brake = true;
+  const ManufacturingPlan plan = plan_manufacturing(part, spec(), o);
+  ASSERT_TRUE(plan.ok()) << plan.message;
+  ASSERT_TRUE(plan.press_checked);
+  EXPECT_FALSE(plan.press.ok);
+  EXPECT_EQ(plan.sequence.order, plan_bend_sequence(part, spec()).order);
+  EXPECT_EQ(plan.press.failed_tab, plan.sequence.order[1]);
+  EXPECT_NE(plan.press.message.find("the part stands 251 mm above the die, more than the 220 mm under the open punch"),
+            std::string::npos) << plan.press.message;
+}
+
 }  // namespace
 }  // namespace sheetgen
