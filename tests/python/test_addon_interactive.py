@@ -36,10 +36,12 @@ import unittest
 ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
 BLEND = os.path.join(ROOT, "sample_scenes", "corner", "scene.blend")
 SCREEN = (1400, 1100)
-# Run 1 must end with a valid part: 6 x 1000 at beam 2 does (CLI: 16 s, of it discovery 2.2 s and
-# composition 10.5 s), with a discovery long enough to read its progress several times. Run 2 is the
-# default search (10 x 1000, beam 8), cancelled long before its end.
-RUN1 = {"chains": 6, "iterations": 1000, "beam_width": 2, "seed": 1}
+# Run 1 must end with a valid part, and its discovery must last long enough for the progress bar to be
+# read at least three times (every 0.1 s) even when the UI stalls for a moment: 6 x 1000 took under a
+# second (1.64 -> 2.61 s after the click), and one stall of the UI left two readings (38 %, 85 %) in a full
+# tier. 6 x 3000 at beam 2: 1.5 s of discovery, 13 readings, and a valid part at 16.7 s. Run 2 is the default search (10 x
+# 1000, beam 8), cancelled long before its end.
+RUN1 = {"chains": 6, "iterations": 3000, "beam_width": 2, "seed": 1}
 RUN2 = {"chains": 10, "iterations": 1000, "beam_width": 8, "seed": 1}
 
 
