@@ -1,18 +1,23 @@
 #!/usr/bin/python3
-"""Free angles against `--right-angles` on every single-load scene of the
-library, at each problem's own settings (10 chains x 1000 iterations, beam 8,
-seed 1): the issue-6 comparison "on all sample problems", as a table.
+"""Free angles against `--right-angles` on the scene library, load by load,
+at each problem's own settings: is the free search ever heavier than the
+right-angle search, which explores a subset of its parts?
 
 The right-angle run is the stand-in for the expert's practice the paper
-compares against (every bend 90 deg +- 0.5 deg, no skew). Material saved is
-reported only where both runs have a valid part; the other rows say why the
-run that failed failed (the reason line of `sheetgen solve`).
+compares against (every bend 90 deg +- 0.5 deg, no skew, plates widened by flat
+extensions). The free grammar contains every such part only when flat
+extensions are on, so `--modes` can add a free run with `--flat-extensions`.
+A row says "heavier" when the free area exceeds the right-angle area by more
+than 1 % (the noise allowance of the comparison). Each other row says why a run
+without a part has none (the reason line of `sheetgen solve`).
 
-    PYTHONPATH=tools /usr/bin/python3 bench/right_angle_baseline.py [--scenes a,b] [--out DIR]
+    PYTHONPATH=tools /usr/bin/python3 bench/right_angle_baseline.py \
+        [--scenes a,b] [--modes free,flat,right] [--threads N] [--out DIR]
 
 Writes DIR/right_angle_baseline.md (default build/right_angle_baseline/) and
 keeps each run's output folder next to it, so `python3 -m sheetgen_tools.verify`
-can check the parts. One solve at a time; about 10 minutes on 2 cores.
+can check the parts. One solve at a time; the nine single-load scenes take
+about 10 minutes on 2 cores, the bay about 10 more per mode.
 """
 import argparse
 import os
@@ -22,55 +27,86 @@ import time
 from sheetgen_tools import paths, runner
 from sheetgen_tools.scenes import LIBRARY
 
-# Every single-load scene of the library (the bay has its own baseline, bench/gauge_baseline.py).
-SCENES = ",".join(s for s in LIBRARY if s != "avionics_bay")
+MODES = {  # name: (column title, sheetgen solve flags)
+    "free": ("free angles", ()),
+    "flat": ("free angles + flat extensions", ("--flat-extensions",)),
+    "right": ("right angles", ("--right-angles",)),
+}
+NOISE = 0.01  # the free area may exceed the right-angle area by this share before a row says "heavier"
 
 
-def solve(sheetgen, problem, out, flags):
-    """One run at the problem's own settings, 2 threads; SolveError unless sheetgen finished."""
-    solved = runner.solve(problem, out, runner.SolveOptions(flags=tuple(flags), sheetgen=sheetgen)).check()
-    part = solved.parts[0]
-    return {"ok": part.get("status") == "ok", "area_cm2": part.get("area_m2", 0.0) * 1e4,
-            "bends": part.get("bends", 0), "reason": part.get("reason", ""), "wall_s": solved.wall_s}
+def solve(sheetgen, problem, out, flags, threads):
+    """One run at the problem's own settings: {load name: part summary}; SolveError unless sheetgen finished."""
+    solved = runner.solve(problem, out, runner.SolveOptions(threads=threads, flags=tuple(flags),
+                                                            sheetgen=sheetgen)).check()
+    parts = {}
+    for part in solved.parts:
+        parts[part.get("load", "")] = {"ok": part.get("status") == "ok", "area_cm2": part.get("area_m2", 0.0) * 1e4,
+                                       "bends": part.get("bends", 0), "reason": part.get("reason", "")}
+    return parts, solved.wall_s
 
 
 def cell(r):
     if r["ok"]:
-        return "%.0f cm², %d bends, %.0f s" % (r["area_cm2"], r["bends"], r["wall_s"])
-    return "no part (%.0f s)" % r["wall_s"]
+        return "%.0f cm², %d bends" % (r["area_cm2"], r["bends"])
+    return "no part"
+
+
+def verdict(row, mode):
+    """One free run against the right-angle run of the same load: 'ok', 'heavier' or 'n/a'."""
+    if not row["right"]["ok"]:
+        return "n/a"
+    if not row[mode]["ok"]:
+        return "heavier (no part)"
+    change = row[mode]["area_cm2"] / row["right"]["area_cm2"] - 1.0
+    return "%s (%+.1f %%)" % ("heavier" if change > NOISE else "ok", 100.0 * change)
+
+
+def run_scene(args, scene, modes):
+    """Every mode on one scene: ({load: {mode: part}}, {mode: wall s})."""
+    rows, walls = {}, {}
+    for mode in modes:
+        parts, walls[mode] = solve(args.sheetgen, paths.scene_problem(scene), os.path.join(args.out, scene, mode),
+                                   MODES[mode][1], args.threads)
+        for load, part in parts.items():
+            rows.setdefault(load, {})[mode] = part
+    return rows, walls
+
+
+def table(args, modes):
+    """The markdown lines: one row per load, then the walls and the reasons."""
+    compared = [m for m in modes if m != "right"] if "right" in modes else []
+    head = ("| scene | load | " + " | ".join(MODES[m][0] for m in modes) + " |" +
+            "".join(" %s vs right angles |" % MODES[m][0] for m in compared))
+    lines = [head, "|" + " --- |" * (len(modes) + len(compared) + 2)]
+    walls, reasons = [], []
+    for scene in args.scenes.split(","):
+        rows, wall = run_scene(args, scene, modes)
+        walls.append("* %s: " % scene + ", ".join("%s %.0f s" % (MODES[m][0], wall[m]) for m in modes))
+        for load, row in rows.items():
+            lines.append(f"| {scene} | {load} | " + " | ".join(cell(row[m]) for m in modes) + " |" +
+                         "".join(" %s |" % verdict(row, m) for m in compared))
+            print(lines[-1], flush=True)
+            reasons += [f"* {scene} / {load}, {MODES[m][0]}: {row[m]['reason']}" for m in modes if not row[m]["ok"]]
+    return lines + ["", "Wall time of each run:", ""] + walls + ["", "Why the runs without a part have none:", ""] + reasons
 
 
 def main():
     ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
-    ap.add_argument("--scenes", default=SCENES)
+    ap.add_argument("--scenes", default=",".join(LIBRARY))
+    ap.add_argument("--modes", default="free,right", help="comma-separated: " + ", ".join(MODES))
+    ap.add_argument("--threads", type=int, default=2)
     ap.add_argument("--out", default=os.path.join(paths.DEFAULT_BUILD, "right_angle_baseline"))
     ap.add_argument("--sheetgen", default=paths.DEFAULT_SHEETGEN)
     args = ap.parse_args()
+    modes = args.modes.split(",")
+    unknown = [m for m in modes if m not in MODES]
+    if unknown:
+        sys.exit("right_angle_baseline: --modes: unknown mode %s (known: %s)" % (unknown[0], ", ".join(MODES)))
     os.makedirs(args.out, exist_ok=True)
-    rows, reasons = [], []
-    both_free = both_ra = 0.0
-    for scene in args.scenes.split(","):
-        problem = paths.scene_problem(scene)
-        free = solve(args.sheetgen, problem, os.path.join(args.out, scene, "free"), [])
-        ra = solve(args.sheetgen, problem, os.path.join(args.out, scene, "right_angles"), ["--right-angles"])
-        saved = "n/a"
-        if free["ok"] and ra["ok"]:
-            saved = "%.1f %%" % (100.0 * (free["area_cm2"] / ra["area_cm2"] - 1.0))
-            both_free += free["area_cm2"]
-            both_ra += ra["area_cm2"]
-        rows.append(f"| {scene} | {cell(free)} | {cell(ra)} | {saved} |")
-        for label, r in (("free", free), ("right angles", ra)):
-            if not r["ok"]:
-                reasons.append(f"* {scene}, {label}: {r['reason']}")
-        print(rows[-1], flush=True)
     md = ["# Free angles vs right angles on the scene library", "",
-          f"`bench/right_angle_baseline.py`, {time.strftime('%Y-%m-%d %H:%M')}, each problem's own settings, 2 threads.", "",
-          "| scene | free angles | right angles | material (free vs right angles) |", "| --- | --- | --- | --- |"]
-    md += rows
-    if both_ra > 0:
-        md += ["", "Over the scenes both runs solve: free %.0f cm², right angles %.0f cm² (%.1f %%)."
-               % (both_free, both_ra, 100.0 * (both_free / both_ra - 1.0))]
-    md += ["", "Why the runs without a part have none:", ""] + reasons
+          f"`bench/right_angle_baseline.py --modes {args.modes}`, {time.strftime('%Y-%m-%d %H:%M')}, "
+          f"each problem's own settings, {args.threads} threads.", ""] + table(args, modes)
     path = os.path.join(args.out, "right_angle_baseline.md")
     with open(path, "w") as f:
         f.write("\n".join(md) + "\n")
