@@ -12,7 +12,7 @@ than 1 % (the noise allowance of the comparison). Each other row says why a run
 without a part has none (the reason line of `sheetgen solve`).
 
     PYTHONPATH=tools /usr/bin/python3 bench/right_angle_baseline.py \
-        [--scenes a,b] [--modes free,flat,right] [--threads N] [--out DIR]
+        [--scenes a,b] [--modes free,flat,right] [--threads N] [--seed N] [--out DIR]
 
 Writes DIR/right_angle_baseline.md (default build/right_angle_baseline/) and
 keeps each run's output folder next to it, so `python3 -m sheetgen_tools.verify`
@@ -20,6 +20,9 @@ can check the parts. One solve at a time; the nine single-load scenes take
 about 10 minutes on 2 cores, the bay about 10 more per mode.
 """
 import argparse
+import csv
+import json
+import math
 import os
 import sys
 import time
@@ -35,20 +38,33 @@ MODES = {  # name: (column title, sheetgen solve flags)
 NOISE = 0.01  # the free area may exceed the right-angle area by this share before a row says "heavier"
 
 
-def solve(sheetgen, problem, out, flags, threads):
-    """One run at the problem's own settings: {load name: part summary}; SolveError unless sheetgen finished."""
-    solved = runner.solve(problem, out, runner.SolveOptions(threads=threads, flags=tuple(flags),
-                                                            sheetgen=sheetgen)).check()
+def bends_at_lower_limit(problem, part_dir):
+    """How many bends of a part's bend table (part_dir/bends.csv) lie within 0.5 deg of the problem's
+    min_bend_angle: the bends a free search uses where a flat extension would do."""
+    with open(problem, encoding="utf-8") as f:
+        limit = math.degrees(json.load(f).get("manufacturing", {}).get("min_bend_angle", math.radians(5.0)))
+    with open(os.path.join(part_dir, "bends.csv"), newline="", encoding="utf-8") as f:
+        return sum(1 for row in csv.DictReader(f) if abs(float(row["angle_deg"])) < limit + 0.5)
+
+
+def solve(args, problem, out, flags):
+    """One run at the problem's own settings (seed: --seed when given): {load name: part summary};
+    SolveError unless sheetgen finished."""
+    solved = runner.solve(problem, out, runner.SolveOptions(threads=args.threads, seed=args.seed, flags=tuple(flags),
+                                                            sheetgen=args.sheetgen)).check()
     parts = {}
     for part in solved.parts:
-        parts[part.get("load", "")] = {"ok": part.get("status") == "ok", "area_cm2": part.get("area_m2", 0.0) * 1e4,
-                                       "bends": part.get("bends", 0), "reason": part.get("reason", "")}
+        load, ok = part.get("load", ""), part.get("status") == "ok"
+        parts[load] = {"ok": ok, "area_cm2": part.get("area_m2", 0.0) * 1e4, "bends": part.get("bends", 0),
+                       "at_limit": bends_at_lower_limit(problem, os.path.join(out, load)) if ok else 0,
+                       "reason": part.get("reason", "")}
     return parts, solved.wall_s
 
 
 def cell(r):
     if r["ok"]:
-        return "%.0f cm², %d bends" % (r["area_cm2"], r["bends"])
+        limit = " (%d at the lower limit)" % r["at_limit"] if r["at_limit"] else ""
+        return "%.0f cm², %d bends%s" % (r["area_cm2"], r["bends"], limit)
     return "no part"
 
 
@@ -66,8 +82,8 @@ def run_scene(args, scene, modes):
     """Every mode on one scene: ({load: {mode: part}}, {mode: wall s})."""
     rows, walls = {}, {}
     for mode in modes:
-        parts, walls[mode] = solve(args.sheetgen, paths.scene_problem(scene), os.path.join(args.out, scene, mode),
-                                   MODES[mode][1], args.threads)
+        parts, walls[mode] = solve(args, paths.scene_problem(scene), os.path.join(args.out, scene, mode),
+                                   MODES[mode][1])
         for load, part in parts.items():
             rows.setdefault(load, {})[mode] = part
     return rows, walls
@@ -88,7 +104,10 @@ def table(args, modes):
                          "".join(" %s |" % verdict(row, m) for m in compared))
             print(lines[-1], flush=True)
             reasons += [f"* {scene} / {load}, {MODES[m][0]}: {row[m]['reason']}" for m in modes if not row[m]["ok"]]
-    return lines + ["", "Wall time of each run:", ""] + walls + ["", "Why the runs without a part have none:", ""] + reasons
+    lines += ["", "Wall time of each run:", ""] + walls
+    if reasons:
+        lines += ["", "Why the runs without a part have none:", ""] + reasons
+    return lines
 
 
 def main():
@@ -96,6 +115,7 @@ def main():
     ap.add_argument("--scenes", default=",".join(LIBRARY))
     ap.add_argument("--modes", default="free,right", help="comma-separated: " + ", ".join(MODES))
     ap.add_argument("--threads", type=int, default=2)
+    ap.add_argument("--seed", type=int, default=None, help="search seed (default: each problem's own)")
     ap.add_argument("--out", default=os.path.join(paths.DEFAULT_BUILD, "right_angle_baseline"))
     ap.add_argument("--sheetgen", default=paths.DEFAULT_SHEETGEN)
     args = ap.parse_args()
@@ -106,7 +126,7 @@ def main():
     os.makedirs(args.out, exist_ok=True)
     md = ["# Free angles vs right angles on the scene library", "",
           f"`bench/right_angle_baseline.py --modes {args.modes}`, {time.strftime('%Y-%m-%d %H:%M')}, "
-          f"each problem's own settings, {args.threads} threads.", ""] + table(args, modes)
+          f"each problem's own settings, seed {args.seed or 'of the problem'}, {args.threads} threads.", ""] + table(args, modes)
     path = os.path.join(args.out, "right_angle_baseline.md")
     with open(path, "w") as f:
         f.write("\n".join(md) + "\n")
