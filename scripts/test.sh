@@ -3,7 +3,7 @@
 # needs, builds, and runs the tests. Exit status 0 = all passed.
 #
 #   bash scripts/test.sh          # fast tier (what .ci/run runs; <= 20 min from a cold ccache)
-#   bash scripts/test.sh --full   # fast tier + the slow checks (over two hours; docs/testing.md)
+#   bash scripts/test.sh --full   # fast tier + the slow checks (about two hours; docs/testing.md)
 #
 # Fast tier: every GoogleTest unit and property test except the CalculiX
 # comparisons, the Python checks, the tests inside `blender -b`, every sample
