@@ -63,7 +63,7 @@ if [ "$FULL" = 1 ]; then
   # (hard cases, determinism, decks, farm) already run under ASan, on more
   # scenes and at larger settings, and would take hours at ASan's speed
   # (solve_samples_fast passed 1500 s unfinished; the CalculiX checks take
-  # 800-1800 s each in Release). Their value is the comparison with CalculiX
+  # 400-1900 s each in Release). Their value is the comparison with CalculiX
   # and the solid model, which the Release run above makes.
   bash "$ROOT/scripts/sanitize.sh" -LE full -E '^solve_samples_fast$' </dev/null 2>&1 | tee "$LOGS/sanitize.log"
 else
