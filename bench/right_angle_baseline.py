@@ -38,13 +38,17 @@ MODES = {  # name: (column title, sheetgen solve flags)
 NOISE = 0.01  # the free area may exceed the right-angle area by this share before a row says "heavier"
 
 
-def bends_at_lower_limit(problem, part_dir):
-    """How many bends of a part's bend table (part_dir/bends.csv) lie within 0.5 deg of the problem's
-    min_bend_angle: the bends a free search uses where a flat extension would do."""
+def min_bend_angle_deg(problem):
+    """The problem's manufacturing.min_bend_angle in degrees (the solver's default, 5 deg, when absent)."""
     with open(problem, encoding="utf-8") as f:
-        limit = math.degrees(json.load(f).get("manufacturing", {}).get("min_bend_angle", math.radians(5.0)))
+        return math.degrees(json.load(f).get("manufacturing", {}).get("min_bend_angle", math.radians(5.0)))
+
+
+def bends_at_lower_limit(limit_deg, part_dir):
+    """How many bends of a part's bend table (part_dir/bends.csv) lie within 0.5 deg of the lower limit
+    limit_deg: the bends a free search uses where a flat extension would do."""
     with open(os.path.join(part_dir, "bends.csv"), newline="", encoding="utf-8") as f:
-        return sum(1 for row in csv.DictReader(f) if abs(float(row["angle_deg"])) < limit + 0.5)
+        return sum(1 for row in csv.DictReader(f) if abs(float(row["angle_deg"])) < limit_deg + 0.5)
 
 
 def solve(args, problem, out, flags):
@@ -52,11 +56,12 @@ def solve(args, problem, out, flags):
     SolveError unless sheetgen finished."""
     solved = runner.solve(problem, out, runner.SolveOptions(threads=args.threads, seed=args.seed, flags=tuple(flags),
                                                             sheetgen=args.sheetgen)).check()
+    limit_deg = min_bend_angle_deg(problem)
     parts = {}
     for part in solved.parts:
         load, ok = part.get("load", ""), part.get("status") == "ok"
         parts[load] = {"ok": ok, "area_cm2": part.get("area_m2", 0.0) * 1e4, "bends": part.get("bends", 0),
-                       "at_limit": bends_at_lower_limit(problem, os.path.join(out, load)) if ok else 0,
+                       "at_limit": bends_at_lower_limit(limit_deg, os.path.join(out, load)) if ok else 0,
                        "reason": part.get("reason", "")}
     return parts, solved.wall_s
 
