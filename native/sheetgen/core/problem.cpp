@@ -425,6 +425,8 @@ void parse_settings(const JsonNode& root, Problem& p) {
   mf.rivet_edge_distance = pos("rivet_edge_distance", 2.0 * mf.rivet_diameter);
   mf.rivet_pitch = pos("rivet_pitch", 6.0 * mf.rivet_diameter);
 
+  if (auto c = root.find("cost")) parse_cost_model(*c, p.cost);
+
   if (auto s = root.find("search")) {
     s->expect_object();
     reject_unknown(*s, {"chains", "iterations", "beam_width", "seed", "alpha", "beta", "scene_unit", "threads"});
@@ -530,7 +532,7 @@ Problem parse_problem(const std::string& json_text, const std::string& source, c
   const JsonNode root(doc, source, "");
   root.expect_object();
   reject_unknown(root, {"format", "name", "description", "units", "environment", "rivet_areas", "loads", "material",
-                        "load_cases", "requirements", "manufacturing", "search"});
+                        "load_cases", "requirements", "manufacturing", "cost", "search"});
   const JsonNode format = root.at("format");
   if (format.as_string() != "sheetgen-problem/1")
     format.fail("unsupported format '" + format.as_string() + "' (expected 'sheetgen-problem/1')");

@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "sheetgen/core/cost_model.hpp"
 #include "sheetgen/core/load_cases.hpp"
 #include "sheetgen/core/triangle_mesh.hpp"
 
@@ -101,7 +102,9 @@ struct Manufacturing {  // lengths m, angles rad; defaults depend on thickness t
   double min_tab_width = 0;      // w_min, feeler width; default 10 t
   double min_tab_length = 0;     // l_min; default 2 R + 2 t (room for the bend)
   double max_tab_length = 0.5;   // l_max, m
-  double min_bend_angle = 5.0 * M_PI / 180.0;    // |theta3| lower limit
+  // |theta3| lower limit: three times 2024-T3's springback in air bending
+  // (docs/cost.md "Minimum bend angle").
+  double min_bend_angle = 10.0 * M_PI / 180.0;
   double max_bend_angle = 135.0 * M_PI / 180.0;  // |theta3| upper limit (press brake tooling)
   double max_skew = 60.0 * M_PI / 180.0;         // |theta1|, |theta2| limit
   // A tab may also continue its parent's plane (theta3 = 0 exactly): a flat
@@ -141,6 +144,7 @@ struct Problem {
   Material material;
   Requirements requirements;
   Manufacturing manufacturing;
+  CostModel cost;
   SearchSettings search;
 
   BoundingBox bounds() const;  // of meshes and load boxes

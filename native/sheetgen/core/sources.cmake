@@ -11,5 +11,6 @@ set(SHEETGEN_CORE_SOURCES
   polygon_geometry.cpp
   json_reader.cpp
   load_cases.cpp
+  cost_model.cpp
   problem.cpp
 )

@@ -117,6 +117,10 @@ TEST(Problem, EveryBadInputGivesOneSentenceAndExitCodeOne) {
       {"unknown rivet mesh", [](json& j, Files&) { j["rivet_areas"][0]["mesh"] = "ceiling"; }, "rivet_areas[0].mesh", "no environment mesh is named 'ceiling'"},
       {"press-brake use", [](json& j, Files&) { j["manufacturing"]["press_brake"] = "always"; }, "manufacturing.press_brake",
        "must be \"report\" or \"require\", got \"always\""},
+      {"free sheet", [](json& j, Files&) { j["cost"]["material_per_kg"] = 0; }, "cost.material_per_kg", "greater than zero"},
+      {"negative bend price", [](json& j, Files&) { j["cost"]["per_bend"] = -1; }, "cost.per_bend", "must not be negative, got -1"},
+      {"empty batch", [](json& j, Files&) { j["cost"]["batch_size"] = 0; }, "cost.batch_size", "must lie in [1, 1000000] parts, got 0"},
+      {"unknown cost field", [](json& j, Files&) { j["cost"]["per_weld"] = 3; }, "cost", "unknown field 'per_weld'"},
       {"inline triangle index", [](json& j, Files&) { j["environment"]["meshes"][1]["triangles"][1][2] = 9; }, "environment.meshes[1].triangles[1][2]", "out of range"},
   };
   Files files;
