@@ -16,10 +16,17 @@ namespace {
 // pays it on every candidate it analyses; the part-only order is checked first
 // and passes for most parts.
 constexpr int kSearchPressBrakeSweeps = 50;
+
+// Self-rivets are known when the candidate is built; the flange rivets once
+// the FEM has laid them out.
+double candidate_cost(const Problem& problem, const Candidate& c) {
+  const int rivets = static_cast<int>(c.self_rivets.size()) + (c.analysed ? c.fem.rivets : 0);
+  return cost_as_sheet_area(problem.cost, problem.material, c.area, c.bends, rivets);
+}
 }  // namespace
 
 Candidate evaluate_part(const Problem& problem, const Environment& env, int load_index, Candidate c, double element_size,
-                        double bend_cost, ShellSolver* solver, double cost_bound) {
+                        ShellSolver* solver, double cost_bound) {
   c.geometry_ok = false;
   c.analysed = false;
   c.over_cost_bound = false;
@@ -39,7 +46,7 @@ Candidate evaluate_part(const Problem& problem, const Environment& env, int load
   const SheetSpec spec = SheetSpec::from(problem);
   ManufacturingPlan plan = plan_manufacturing(c.part, spec);
   c.area = plan.flat.area();
-  c.cost = c.area + bend_cost * c.bends;
+  c.cost = candidate_cost(problem, c);
   if (!plan.ok()) {
     c.reason = plan.status;
     c.message = plan.message;
@@ -77,6 +84,7 @@ void analyse_candidate(const Problem& problem, int load_index, Candidate& c, dou
     mo.eigen_checks = problem.requirements.eigen_checks || element_size <= 0;
     c.fem = analyse_part(problem, load_index, plate_geometry(c.part, realise(c.part)), mo, solver);
     c.analysed = true;
+    c.cost = candidate_cost(problem, c);
   } catch (const FemError& e) {
     c.fem_error = e.what();
   }
@@ -84,12 +92,12 @@ void analyse_candidate(const Problem& problem, int load_index, Candidate& c, dou
 
 Candidate evaluate_candidate(const Problem& problem, const Environment& env, int load_index, const Part& base,
                              const SegmentLibrary& library, std::vector<int> segments, double element_size,
-                             double bend_cost, ShellSolver* solver, double cost_bound) {
+                             ShellSolver* solver, double cost_bound) {
   Candidate c;
   std::sort(segments.begin(), segments.end());
   c.segments = segments;
   c.part = assemble_part(base, library, segments);
-  return evaluate_part(problem, env, load_index, std::move(c), element_size, bend_cost, solver, cost_bound);
+  return evaluate_part(problem, env, load_index, std::move(c), element_size, solver, cost_bound);
 }
 
 }  // namespace sheetgen

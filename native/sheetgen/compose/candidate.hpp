@@ -2,8 +2,8 @@
 // One candidate of the composition (paper Sec. 5.1, docs/architecture.md
 // "Composition"): a subset of the segment library, closed under parents,
 // assembled into a part, checked (validity against the environment, flat
-// pattern, bend sequence), scored cost = area + lambda * bends and analysed by
-// the shell FEM.
+// pattern, bend sequence), scored by its cost (core/cost_model.hpp: sheet,
+// bends, rivets, in m^2 of sheet) and analysed by the shell FEM.
 #include <limits>
 #include <string>
 #include <vector>
@@ -30,7 +30,10 @@ struct Candidate {
   std::string fem_error;           // the FEM's sentence when it could not solve
   double area = 0;                 // m^2, flat-pattern material
   int bends = 0;
-  double cost = 0;                 // m^2, area + lambda * bends
+  // m^2 of sheet, cost_as_sheet_area(): material, bends and rivets. Before the
+  // FEM has laid out the flange rivets it counts only the self-rivets, a lower
+  // bound of the cost after (what the cost bound needs).
+  double cost = 0;
   std::vector<SelfRivetTie> self_rivets;  // gusset rivets (paper Sec. 5.2), tied in the FEM
   bool over_cost_bound = false;    // geometry ok, but not analysed: dearer than the valid parts kept
   bool screened_out = false;       // analysed on the screening mesh only, not among the best there (fem is that result)
@@ -41,11 +44,12 @@ struct Candidate {
 // bend sequence, FEM. element_size <= 0: the default mesh.
 Candidate evaluate_candidate(const Problem& problem, const Environment& env, int load_index, const Part& base,
                              const SegmentLibrary& library, std::vector<int> segments, double element_size,
-                             double bend_cost, ShellSolver* solver = nullptr,
+                             ShellSolver* solver = nullptr,
                              double cost_bound = std::numeric_limits<double>::infinity());
 
 // The FEM of a candidate whose geometry passed: sets analysed and fem, or
-// fem_error when the model cannot be solved. element_size <= 0: the default mesh.
+// fem_error when the model cannot be solved, and the cost with the flange
+// rivets it laid out. element_size <= 0: the default mesh.
 void analyse_candidate(const Problem& problem, int load_index, Candidate& candidate, double element_size,
                        ShellSolver* solver = nullptr);
 
@@ -53,7 +57,7 @@ void analyse_candidate(const Problem& problem, int load_index, Candidate& candid
 // default mesh for the final check. A part whose cost (m^2) is at least
 // cost_bound is checked but not analysed (over_cost_bound).
 Candidate evaluate_part(const Problem& problem, const Environment& env, int load_index, Candidate candidate,
-                        double element_size, double bend_cost, ShellSolver* solver = nullptr,
+                        double element_size, ShellSolver* solver = nullptr,
                         double cost_bound = std::numeric_limits<double>::infinity());
 
 }  // namespace sheetgen

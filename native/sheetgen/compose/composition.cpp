@@ -246,7 +246,7 @@ std::vector<int> BeamSearch::evaluate(const std::vector<std::vector<int>>& subse
       if (inject && std::strcmp(inject, "composition") == 0) throw std::runtime_error("injected fault in a composition worker");
       const Part probe = assemble_part(base_, library_, subsets[i]);
       const double h = screening_ ? options_.screen_element_factor * default_size(probe) : search_size(probe);
-      out[i] = evaluate_candidate(problem_, env_, load_index_, base_, library_, subsets[i], h, options_.bend_cost,
+      out[i] = evaluate_candidate(problem_, env_, load_index_, base_, library_, subsets[i], h,
                                   &solvers_.local(), bound);
       if (progress_) ++progress_->evaluated;
     });
@@ -371,7 +371,7 @@ void BeamSearch::evaluate_variants(int level, std::vector<Candidate>& variants, 
     tbb::parallel_for(size_t(0), variants.size(), [&](size_t k) {
       if (cancel_requested()) return;
       const double h = search_size(variants[k].part);
-      checked[k] = evaluate_part(problem_, env_, load_index_, variants[k], h, options_.bend_cost, &solvers_.local(), bound);
+      checked[k] = evaluate_part(problem_, env_, load_index_, variants[k], h, &solvers_.local(), bound);
       if (progress_) ++progress_->evaluated;
     });
   });

@@ -3,7 +3,7 @@
 // beam search over subsets of the segment library that are closed under
 // parents. Every candidate is assembled, checked (self-intersection across
 // segments, environment, flat pattern, bend sequence), analysed by the shell
-// FEM, and scored cost = area + lambda * bends (candidate.hpp). The answer is
+// FEM, and scored by its cost (core/cost_model.hpp). The answer is
 // the cheapest candidate that is stiff and strong enough.
 #include <atomic>
 #include <string>
@@ -21,7 +21,6 @@ class Environment;
 struct ComposeOptions {
   int beam_width = 8;              // B: states kept per level (quality/time knob)
   int max_segments = 6;            // segments in one part
-  double bend_cost = 2.0e-3;       // lambda, m^2 of material one bend is worth (about a 45 mm square)
   double search_element_size = 0;  // m, FEM mesh during the search; <= 0: 1.5x the default size
   bool self_rivet = true;          // try self-riveting when MS passes but compliance does not
   bool stiffening_lips = true;     // try lips on the free edges of candidates that miss their limits

@@ -52,7 +52,6 @@ struct FinalCheck {
   const Problem& scene;
   const Environment& env;
   int load_index;
-  double bend_cost;  // m^2 per bend, the composition's lambda
   bool web_roots;    // for the debug line
   std::set<std::pair<std::vector<int>, double>> failed;  // (segments, cost) of parts rejected
   std::string reason;  // why the cheapest analysed part failed, when one did
@@ -62,7 +61,7 @@ struct FinalCheck {
     for (const Candidate& c : valid) {
       if (failed.count({c.segments, c.cost})) continue;
       const auto tc = std::chrono::steady_clock::now();
-      Candidate checked = evaluate_part(scene, env, load_index, c, 0.0, bend_cost);
+      Candidate checked = evaluate_part(scene, env, load_index, c, 0.0);
       ++out.fem_calls;
       if (std::getenv("SHEETGEN_COMPOSE_DEBUG"))
         std::fprintf(stderr, "[final check] %s%s: %s in %.2f s\n", out.load.c_str(), web_roots ? " (web roots)" : "",
@@ -88,7 +87,7 @@ bool compose_and_check(const Problem& scene, const Environment& env, int li, con
   const auto t0 = std::chrono::steady_clock::now();
   ComposeResult composed = compose_part(scene, env, li, found.base, found.library, copt, compose_progress(progress));
   if (composed.cancelled || cancel_requested(progress)) return false;
-  FinalCheck check{scene, env, li, copt.bend_cost, web_roots, {}, {}};
+  FinalCheck check{scene, env, li, web_roots, {}, {}};
   check.run(composed.valid, out);
   out.skipped_by_cost = composed.skipped_by_cost;
   out.screen_fem_calls = composed.screen_fem_calls;

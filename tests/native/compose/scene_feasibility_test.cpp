@@ -62,7 +62,7 @@ Part web_part(const Problem& p, const WebDesign& d) {
 Candidate evaluate(const Problem& p, const Environment& env, const Part& part) {
   Candidate c;
   c.part = part;
-  return evaluate_part(p, env, 0, c, 0.0, 2e-3);
+  return evaluate_part(p, env, 0, c, 0.0);
 }
 
 void expect_feasible(const std::string& scene, const WebDesign& d, double max_ratio_with_lips) {
