@@ -174,7 +174,11 @@ class Document(unittest.TestCase):
         self.assertEqual(rows["Displacement |u| (mm)"], "0.200")
         self.assertEqual(rows["Deflection along F (mm)"], "0.150")
         self.assertEqual(rows["Run time (s)"], "3.5")
+        self.assertEqual(rows["Cost"], "—")                  # a result written before the cost model
         self.assertEqual(R.status_line(bracket()), "box: 140.0 cm², 1 bends, MS 1.25")
+        part = bracket()
+        part["cost"] = {"currency": "EUR", "material": 0.934, "bends": 1.0, "rivets": 2.0, "setup": 6.0, "total": 9.934}
+        self.assertEqual(dict(R.report_rows(part))["Cost (EUR)"], "9.93")
 
 
 if __name__ == "__main__":

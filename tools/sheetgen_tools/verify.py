@@ -15,6 +15,8 @@ the code that made them:
   tolerances and the cost. Off with VerifyOptions.calculix;
 * the DXF (dxf_check.py, ezdxf): one simple closed CUT outline of the
   flat-pattern area, and the rivet holes;
+* the cost (cost_check.py): result.json's cost against the one rebuilt from
+  the problem's prices, flat.dxf's outline and holes and bends.csv;
 * parts of a multi-load problem avoid each other: each part's clearance is
   also measured to both faces of every part before it in result.json (the
   order sheetgen solves the loads in, each part an obstacle for the later ones).
@@ -34,6 +36,7 @@ from typing import Optional
 from . import paths
 from .ccx_check import check_calculix
 from .clearance import check_clearance
+from .cost_check import check_cost
 from .dxf_check import check_holes, check_outline
 from .findings import Findings
 from .geometry import part_faces
@@ -82,6 +85,7 @@ def check_part(out_dir, prob, meshes, part, options, findings):
         check_calculix(out_dir, prob, part, options.sheetgen, findings)
     doc = check_outline(out_dir, part, findings)
     check_holes(out_dir, prob, part, findings, doc)
+    check_cost(out_dir, prob, part, findings, doc)
 
 
 def verify_output(out_dir, options=None):

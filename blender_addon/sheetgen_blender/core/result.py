@@ -339,6 +339,10 @@ def report(part):
     values["time_s"] = (part.get("timing") or {}).get("total_s")
     values["rivets"] = len(part.get("rivets") or [])
     values["self_rivets"] = len(part.get("self_rivets") or [])
+    cost = part.get("cost")
+    # A result.json written before the cost model has no cost.
+    values["cost"] = cost.get("total") if isinstance(cost, dict) else None
+    values["currency"] = cost.get("currency", "") if isinstance(cost, dict) else ""
     return values
 
 
@@ -351,6 +355,9 @@ def report_rows(part):
         rows.append((label, "—" if v is None else fmt % v))
     rows.append(("Rivets", "%d" % values["rivets"]))
     rows.append(("Self-rivets", "%d" % values["self_rivets"]))
+    # Material, bends, rivets and the set-up share (docs/cost.md).
+    c = values["cost"]
+    rows.append(("Cost" + (" (%s)" % values["currency"] if values["currency"] else ""), "—" if c is None else "%.2f" % c))
     t = values["time_s"]
     rows.append(("Run time (s)", "—" if t is None else "%.1f" % t))
     return rows

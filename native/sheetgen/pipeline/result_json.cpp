@@ -39,6 +39,13 @@ json envelope_json(const EnvelopeResult& env, const Requirements& req) {
   return e;
 }
 
+// What the part costs to make, by the problem's cost model (core/cost_model.hpp).
+json cost_json(const Problem& problem, double area_m2, int bends, int rivets) {
+  const PartCost pc = part_cost(problem.cost, problem.material, area_m2, bends, rivets);
+  return {{"currency", problem.cost.currency}, {"material", pc.material}, {"bends", pc.bends},
+          {"rivets", pc.rivets}, {"rivet_count", rivets}, {"setup", pc.setup}, {"total", pc.total()}};
+}
+
 // The part of a load that has one (valid or the closest candidate): size,
 // cost, FEM at the default mesh, tabs, rivets and flat pattern.
 void add_part_fields(json& p, const Problem& problem, const LoadOutcome& o) {
@@ -47,6 +54,7 @@ void add_part_fields(json& p, const Problem& problem, const LoadOutcome& o) {
   p["mass_kg"] = c.area * problem.material.thickness * problem.material.density;
   p["bends"] = c.bends;
   p["cost_m2"] = c.cost;
+  p["cost"] = cost_json(problem, c.area, c.bends, static_cast<int>(o.rivets.size() + c.self_rivets.size()));
   if (c.analysed) {
     p["compliance"] = c.fem.compliance;
     p["compliance_limit"] = c.fem.compliance_limit;
