@@ -9,6 +9,7 @@
 #include <utility>
 #include <vector>
 
+#include "sheetgen/discovery/feeler.hpp"
 #include "sheetgen/env/environment.hpp"
 
 namespace sheetgen {
@@ -181,6 +182,19 @@ bool merge_pass(LoadOutcome& best, LoadOutcome&& pass, const Problem& scene) {
 
 }  // namespace
 
+namespace {
+// The scene of a load's later pass (1: web roots, 2: flat extensions). A later
+// pass is a retry after the first found no valid part, and which part a search
+// finds depends on its random numbers as much as on its grammar
+// (docs/ablation_composition.md: five seeds of one scene); so each pass draws
+// its own, derived from the problem's seed (docs/pipeline.md "Later passes").
+Problem pass_scene(const Problem& scene, int pass) {
+  Problem p = scene;
+  p.search.seed = ChainRng::seed_for(scene.search.seed, 1000 + pass);
+  return p;
+}
+}  // namespace
+
 LoadSearch search_load(const Environment& env, int li, const LoadOutcome& start, const GenerateOptions& options,
                        bool flat_fallback, GenerateProgress* progress) {
   const Problem& scene = env.problem();
@@ -193,7 +207,7 @@ LoadSearch search_load(const Environment& env, int li, const LoadOutcome& start,
   s.finished = search_pass(scene, env, li, options, /*web_roots=*/false, progress, first);
   if (s.finished && !first.ok && options.web_fallback && !cancel_requested(progress)) {
     LoadOutcome webbed = start;
-    s.finished = search_pass(scene, env, li, options, /*web_roots=*/true, progress, webbed);
+    s.finished = search_pass(pass_scene(scene, 1), env, li, options, /*web_roots=*/true, progress, webbed);
     webbed.web_pass_tried = first.web_pass_tried = true;
     merge_pass(first, std::move(webbed), scene);
   }
@@ -202,7 +216,7 @@ LoadSearch search_load(const Environment& env, int li, const LoadOutcome& start,
   // plain and web searches stay 26 % over its compliance limit, this one finds
   // a valid part.
   if (s.finished && !first.ok && flat_fallback && !cancel_requested(progress)) {
-    Problem flat_scene = scene;
+    Problem flat_scene = pass_scene(scene, 2);
     flat_scene.manufacturing.flat_extensions = true;
     LoadOutcome flat = start;
     if (progress) progress->flat_pass = true;
