@@ -35,15 +35,22 @@ def fmt(v, spec, scale=1.0):
     return "–" if v is None else format(v * scale, spec)
 
 
+def cost_text(p):
+    """A part's cost to make (docs/cost.md), e.g. "26.61 USD"; "–" in a result written before the cost model."""
+    c = p.get("cost")
+    return "%.2f %s" % (c["total"], c.get("currency", "")) if isinstance(c, dict) else "–"
+
+
 def part_rows(result):
-    lines = ["| load | status | area (cm²) | mass (g) | bends | C (J) | C_max (J) | deflection (mm) | σ_vm max (MPa) | MS | segments (library) | FEM calls | time (s) |",
-             "|---|---|---|---|---|---|---|---|---|---|---|---|---|"]
+    lines = ["| load | status | area (cm²) | mass (g) | bends | cost | C (J) | C_max (J) | deflection (mm) | σ_vm max (MPa) | MS | segments (library) | FEM calls | time (s) |",
+             "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|"]
     for p in result["parts"]:
         ok = p["status"] == "ok"
         t = p.get("timing", {})
-        lines.append("| %s | %s | %s | %s | %s | %s | %s | %s | %s | %s | %s (%s) | %s | %s |" % (
+        lines.append("| %s | %s | %s | %s | %s | %s | %s | %s | %s | %s | %s | %s (%s) | %s | %s |" % (
             p["load"], p["status"], fmt(p.get("area_m2") if ok else None, ".1f", 1e4),
             fmt(p.get("mass_kg") if ok else None, ".0f", 1e3), p["bends"] if ok else "–",
+            cost_text(p) if ok else "–",
             fmt(p.get("compliance") if ok else None, ".4f"), fmt(p.get("compliance_limit"), ".4f"),
             fmt(p.get("deflection_m") if ok else None, ".3f", 1e3), fmt(p.get("max_von_mises_pa") if ok else None, ".0f", 1e-6),
             fmt(p.get("margin_of_safety") if ok else None, ".2f"), len(p.get("segments", [])) if ok else "–",
@@ -68,8 +75,8 @@ def intro(notes):
           "candidate of a load without a valid part translucent magenta).", "",
           ] + [n + "\n" for n in notes] + [
           "## Summary", "",
-          "| scene | loads ok | area (cm²) | mass (kg) | bends | worst C/C_max | lowest MS | wall time (s) | settings | verify |",
-          "|---|---|---|---|---|---|---|---|---|---|"]
+          "| scene | loads ok | area (cm²) | mass (kg) | bends | cost | worst C/C_max | lowest MS | wall time (s) | settings | verify |",
+          "|---|---|---|---|---|---|---|---|---|---|---|"]
     return md
 
 
@@ -80,11 +87,13 @@ def summary_table(summary):
         r = summary[run]
         s = r.get("settings") or {}
         ok = r["ok"] > 0
-        md.append("| [%s](#%s) | %d/%d | %s | %s | %s | %s | %s | %s | %s × %s | %s |" % (
+        md.append("| [%s](#%s) | %d/%d | %s | %s | %s | %s | %s | %s | %s | %s × %s | %s |" % (
             run, run, r["ok"], r["loads"], fmt(r["area_m2"] if ok else None, ".0f", 1e4),
-            fmt(r["mass_kg"] if ok else None, ".3f"), r["bends"] if ok else "–", fmt(r["worst_c_ratio"], ".3f"),
+            fmt(r["mass_kg"] if ok else None, ".3f"), r["bends"] if ok else "–",
+            ("%.2f %s" % (r["cost"], r.get("currency", ""))) if ok and "cost" in r else "–", fmt(r["worst_c_ratio"], ".3f"),
             fmt(r["min_ms"], ".2f"), fmt(r["wall_s"], ".0f"), s.get("chains", "?"), s.get("iterations", "?"), r["verify"]))
-    md += ["", "Area, mass and bends are sums over the loads that have a part; C/C_max is the worst load, MS the "
+    md += ["", "Area, mass, bends and cost (docs/cost.md: sheet, bends, rivets and set-up share at the "
+           "problem's prices) are sums over the loads that have a part; C/C_max is the worst load, MS the "
            "lowest. Wall time is the whole `sheetgen solve` run on the shared 2-core machine (`--threads 2`, one "
            "solve at a time, other engineers' jobs running).", ""]
     return md

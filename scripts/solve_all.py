@@ -39,7 +39,7 @@ RUNS = [(scene, scene, ()) for scene in LIBRARY] + [("avionics_bay_right_angles"
 def summarise(run, out_dir, wall_s, exit_code, verify_status):
     """One table row from a run's result.json (totals over loads)."""
     row = {"run": run, "wall_s": wall_s, "exit": exit_code, "verify": verify_status, "loads": 0, "ok": 0,
-           "area_m2": 0.0, "mass_kg": 0.0, "bends": 0, "worst_c_ratio": None, "min_ms": None, "solver_s": None,
+           "area_m2": 0.0, "mass_kg": 0.0, "bends": 0, "cost": 0.0, "currency": "", "worst_c_ratio": None, "min_ms": None, "solver_s": None,
            "failures": []}
     path = os.path.join(out_dir, "result.json")
     if not os.path.exists(path):
@@ -56,6 +56,8 @@ def summarise(run, out_dir, wall_s, exit_code, verify_status):
         row["area_m2"] += p["area_m2"]
         row["mass_kg"] += p["mass_kg"]
         row["bends"] += p["bends"]
+        row["cost"] += p.get("cost", {}).get("total", 0.0)
+        row["currency"] = p.get("cost", {}).get("currency", "")
         ratio = p["compliance"] / p["compliance_limit"]
         row["worst_c_ratio"] = ratio if row["worst_c_ratio"] is None else max(row["worst_c_ratio"], ratio)
         ms = p["margin_of_safety"]
@@ -70,11 +72,12 @@ def fmt_row(r):
     area = f(r["area_m2"] * 1e4, ".0f") if r["ok"] else "-"
     mass = f(r["mass_kg"], ".3f") if r["ok"] else "-"
     bends = str(r["bends"]) if r["ok"] else "-"
-    return [r["run"], ok, area, mass, bends, f(r["worst_c_ratio"], ".3f"), f(r["min_ms"], ".3f"),
+    cost = f(r.get("cost"), ".2f") if r["ok"] else "-"
+    return [r["run"], ok, area, mass, bends, cost, f(r["worst_c_ratio"], ".3f"), f(r["min_ms"], ".3f"),
             f(r["wall_s"], ".0f"), r["verify"]]
 
 
-HEADER = ["scene", "loads ok", "area cm2", "mass kg", "bends", "C/Cmax", "MS", "wall s", "verify"]
+HEADER = ["scene", "loads ok", "area cm2", "mass kg", "bends", "cost", "C/Cmax", "MS", "wall s", "verify"]
 
 
 def print_table(rows):

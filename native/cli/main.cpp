@@ -338,6 +338,7 @@ struct SolveArgs {
   bool no_lips = false;
   bool no_web_roots = false;
   bool no_flat_fallback = false;
+  int seed_retries = sheetgen::GenerateOptions{}.seed_retries;
 };
 
 // `sheetgen solve`: exit 0 = every load has a valid part, 2 = some load has
@@ -356,6 +357,7 @@ int solve(const SolveArgs& a) {
   options.compose.stiffening_lips = !a.no_lips;
   options.web_fallback = !a.no_web_roots;
   options.flat_fallback = !a.no_flat_fallback;
+  options.seed_retries = a.seed_retries;
   sheetgen::GenerateProgress progress;
   std::signal(SIGINT, on_sigint);
   std::signal(SIGTERM, on_sigint);
@@ -462,6 +464,9 @@ CLI::App* add_solve_command(CLI::App& app, SolveArgs& a) {
                       "do not search a load again with web roots when the first search finds no valid part");
   solve_cmd->add_flag("--no-flat-fallback", a.no_flat_fallback,
                       "do not search a load a third time with flat extensions when no search found a valid part");
+  solve_cmd->add_option("--seed-retries", a.seed_retries,
+                        "searches of a load with fresh seeds after every other pass found no valid part (default 2)")
+      ->check(CLI::Range(0, 100));
   return solve_cmd;
 }
 

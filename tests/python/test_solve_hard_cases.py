@@ -100,14 +100,18 @@ class HardCases(unittest.TestCase):
         reason = result["parts"][0]["reason"]
         self.assertIn("compliance", reason)
         self.assertIn("over the limit", reason)
-        # Every fallback ran before giving up: web roots, then flat extensions.
+        # Every fallback ran before giving up: web roots, flat extensions, then the two retries.
         part = result["parts"][0]
         self.assertTrue(part["web_pass_tried"] and part["flat_pass_tried"], part)
+        self.assertEqual(part["seed_retries_tried"], 2)
+        self.assertIn(part["seed_retry"], (0, 1, 2))  # the pass whose candidate came nearest to valid
         self.assertTrue(result["search"]["flat_fallback"])
-        # Flat extensions already on: no third search (it would repeat the first).
-        p, result, _ = solve(prob, "--flat-extensions")
+        self.assertEqual(result["search"]["seed_retries"], 2)
+        # Flat extensions already on: no third search (it would repeat the first); retries off.
+        p, result, _ = solve(prob, "--flat-extensions", "--seed-retries", "0")
         self.assertEqual(p.exit_code, 2, p.stdout + p.stderr)
         self.assertFalse(result["parts"][0]["flat_pass_tried"])
+        self.assertEqual(result["parts"][0]["seed_retries_tried"], 0)
         self.assertFalse(result["search"]["flat_fallback"])
 
     def test_ctrl_c_ends_within_a_second_and_writes_nothing(self):

@@ -141,6 +141,7 @@ GenerateResult result_settings(const Problem& problem, const GenerateOptions& op
   result.stiffening_lips = options.compose.stiffening_lips;
   result.web_fallback = options.web_fallback;
   result.flat_fallback = options.flat_fallback && !problem.manufacturing.flat_extensions;
+  result.seed_retries = options.seed_retries;
   return result;
 }
 

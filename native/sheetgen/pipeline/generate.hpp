@@ -31,6 +31,10 @@ struct GenerateOptions {
   // extensions (unless they are already on): a plate cut larger where a bend
   // alone cannot stiffen it (docs/pipeline.md); off: --no-flat-fallback.
   bool flat_fallback = true;
+  // A load that no pass above gave a valid part is searched again, at most
+  // this many times, each with a fresh seed (docs/pipeline.md "Retries");
+  // --seed-retries N.
+  int seed_retries = 2;
   ComposeOptions compose;      // beam_width and threads are taken from the settings above
 };
 
@@ -70,6 +74,8 @@ struct LoadOutcome {
   bool web_roots = false;            // the answer comes from that second search
   bool flat_pass_tried = false;      // no search so far found a valid part, a third ran with flat extensions
   bool flat_pass = false;            // the answer comes from that third search
+  int seed_retries_tried = 0;        // plain searches with fresh seeds after every other pass found no valid part
+  int seed_retry = 0;                // 1-based: the answer comes from that retry; 0: from an earlier pass
   double environment_seconds = 0, discovery_seconds = 0, composition_seconds = 0, total_seconds = 0;
 };
 
@@ -81,6 +87,7 @@ struct GenerateResult {
   bool self_rivet = true, stiffening_lips = true;  // the composition's variants that were on
   bool web_fallback = true;           // a second search with web roots where the first found no part
   bool flat_fallback = true;          // a third search with flat extensions where neither found one
+  int seed_retries = 2;               // at most this many searches with fresh seeds where no pass found a part
   bool cancelled = false;
   double seconds = 0;
   bool all_ok() const;

@@ -102,6 +102,8 @@ void add_search_fields(json& p, const LoadOutcome& o) {
   p["web_roots"] = o.web_roots;
   p["flat_pass_tried"] = o.flat_pass_tried;
   p["flat_pass"] = o.flat_pass;
+  p["seed_retries_tried"] = o.seed_retries_tried;
+  p["seed_retry"] = o.seed_retry;
   p["timing"] = {{"environment_s", o.environment_seconds}, {"discovery_s", o.discovery_seconds},
                  {"composition_s", o.composition_seconds}, {"total_s", o.total_seconds}};
 }
@@ -135,7 +137,8 @@ json result_json(const Problem& problem, const GenerateResult& result, const std
                    {"flat_extensions", result.flat_extensions},
                    {"self_rivet", result.self_rivet},         {"stiffening_lips", result.stiffening_lips},
                    {"web_fallback", result.web_fallback},
-                   {"flat_fallback", result.flat_fallback}};
+                   {"flat_fallback", result.flat_fallback},
+                   {"seed_retries", result.seed_retries}};
   doc["timing"] = {{"total_s", result.seconds}};
   return doc;
 }

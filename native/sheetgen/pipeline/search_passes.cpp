@@ -183,7 +183,8 @@ bool merge_pass(LoadOutcome& best, LoadOutcome&& pass, const Problem& scene) {
 }  // namespace
 
 namespace {
-// The scene of a load's later pass (1: web roots, 2: flat extensions). A later
+// The scene of a load's later pass (1: web roots, 2: flat extensions, 3 and
+// on: retries). A later
 // pass is a retry after the first found no valid part, and which part a search
 // finds depends on its random numbers as much as on its grammar
 // (docs/ablation_composition.md: five seeds of one scene); so each pass draws
@@ -192,6 +193,24 @@ Problem pass_scene(const Problem& scene, int pass) {
   Problem p = scene;
   p.search.seed = ChainRng::seed_for(scene.search.seed, 1000 + pass);
   return p;
+}
+
+// Retries (docs/pipeline.md "Retries"): while no pass has a valid part, the
+// plain search again with a fresh seed, up to options.seed_retries times. Which
+// part a search finds depends on its seed: a load that one seed leaves without
+// a part, another often solves. Only loads without a part pay for them.
+void retry_with_fresh_seeds(const Problem& scene, const Environment& env, int li, const LoadOutcome& start,
+                            const GenerateOptions& options, GenerateProgress* progress, LoadSearch& s) {
+  LoadOutcome& best = s.answer;
+  for (int k = 1; k <= options.seed_retries && s.finished && !best.ok && !cancel_requested(progress); ++k) {
+    LoadOutcome retry = start;
+    s.finished = search_pass(pass_scene(scene, 2 + k), env, li, options, /*web_roots=*/false, progress, retry);
+    retry.web_pass_tried = best.web_pass_tried;
+    retry.flat_pass_tried = best.flat_pass_tried;
+    retry.seed_retries_tried = best.seed_retries_tried = k;
+    retry.seed_retry = k;
+    if (merge_pass(best, std::move(retry), scene)) s.flat_scene.reset();
+  }
 }
 }  // namespace
 
@@ -226,6 +245,7 @@ LoadSearch search_load(const Environment& env, int li, const LoadOutcome& start,
     flat.flat_pass_tried = first.flat_pass_tried = flat.flat_pass = true;
     if (merge_pass(first, std::move(flat), scene)) s.flat_scene = std::move(flat_scene);
   }
+  retry_with_fresh_seeds(scene, env, li, start, options, progress, s);
   return s;
 }
 
