@@ -39,7 +39,7 @@ NOISE = 0.01  # the free area may exceed the right-angle area by this share befo
 
 
 def min_bend_angle_deg(problem):
-    """The problem's manufacturing.min_bend_angle in degrees (the solver's default, 5 deg, when absent)."""
+    """The problem's manufacturing.min_bend_angle in degrees (the solver's default, 5 deg, when absent: docs/cost.md)."""
     with open(problem, encoding="utf-8") as f:
         return math.degrees(json.load(f).get("manufacturing", {}).get("min_bend_angle", math.radians(5.0)))
 

@@ -17,11 +17,17 @@ namespace {
 // and passes for most parts.
 constexpr int kSearchPressBrakeSweeps = 50;
 
-// Self-rivets are known when the candidate is built; the flange rivets once
-// the FEM has laid them out.
-double candidate_cost(const Problem& problem, const Candidate& c) {
-  const int rivets = static_cast<int>(c.self_rivets.size()) + (c.analysed ? c.fem.rivets : 0);
-  return cost_as_sheet_area(problem.cost, problem.material, c.area, c.bends, rivets);
+// The candidate's rivets, before its FEM: the self-rivets and the flange
+// rivets laid out as the FEM will lay them out, so the cost is exact before
+// the analysis and the cost bound as tight as it can be. A part whose flanges
+// hold no rivet fails in the FEM; its cost counts the self-rivets only.
+int count_rivets(const Problem& problem, const Candidate& c, const RealisedPart& realised) {
+  int flange = 0;
+  try {
+    flange = flange_rivet_count(problem, plate_geometry(c.part, realised));
+  } catch (const FemError&) {
+  }
+  return flange + static_cast<int>(c.self_rivets.size());
 }
 }  // namespace
 
@@ -46,7 +52,8 @@ Candidate evaluate_part(const Problem& problem, const Environment& env, int load
   const SheetSpec spec = SheetSpec::from(problem);
   ManufacturingPlan plan = plan_manufacturing(c.part, spec);
   c.area = plan.flat.area();
-  c.cost = candidate_cost(problem, c);
+  c.rivets = count_rivets(problem, c, realised);
+  c.cost = cost_as_sheet_area(problem.cost, problem.material, c.area, c.bends, c.rivets);
   if (!plan.ok()) {
     c.reason = plan.status;
     c.message = plan.message;
@@ -84,7 +91,6 @@ void analyse_candidate(const Problem& problem, int load_index, Candidate& c, dou
     mo.eigen_checks = problem.requirements.eigen_checks || element_size <= 0;
     c.fem = analyse_part(problem, load_index, plate_geometry(c.part, realise(c.part)), mo, solver);
     c.analysed = true;
-    c.cost = candidate_cost(problem, c);
   } catch (const FemError& e) {
     c.fem_error = e.what();
   }

@@ -30,10 +30,8 @@ struct Candidate {
   std::string fem_error;           // the FEM's sentence when it could not solve
   double area = 0;                 // m^2, flat-pattern material
   int bends = 0;
-  // m^2 of sheet, cost_as_sheet_area(): material, bends and rivets. Before the
-  // FEM has laid out the flange rivets it counts only the self-rivets, a lower
-  // bound of the cost after (what the cost bound needs).
-  double cost = 0;
+  int rivets = 0;                  // flange rivets (as the FEM lays them out) and self-rivets
+  double cost = 0;                 // m^2 of sheet, cost_as_sheet_area(): material, bends and rivets
   std::vector<SelfRivetTie> self_rivets;  // gusset rivets (paper Sec. 5.2), tied in the FEM
   bool over_cost_bound = false;    // geometry ok, but not analysed: dearer than the valid parts kept
   bool screened_out = false;       // analysed on the screening mesh only, not among the best there (fem is that result)
@@ -48,8 +46,7 @@ Candidate evaluate_candidate(const Problem& problem, const Environment& env, int
                              double cost_bound = std::numeric_limits<double>::infinity());
 
 // The FEM of a candidate whose geometry passed: sets analysed and fem, or
-// fem_error when the model cannot be solved, and the cost with the flange
-// rivets it laid out. element_size <= 0: the default mesh.
+// fem_error when the model cannot be solved. element_size <= 0: the default mesh.
 void analyse_candidate(const Problem& problem, int load_index, Candidate& candidate, double element_size,
                        ShellSolver* solver = nullptr);
 

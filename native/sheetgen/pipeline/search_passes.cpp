@@ -180,22 +180,19 @@ bool merge_pass(LoadOutcome& best, LoadOutcome&& pass, const Problem& scene) {
   return keep;
 }
 
-}  // namespace
-
-namespace {
 // The scene of a load's later pass (1: web roots, 2: flat extensions, 3 and
-// on: retries). A later
-// pass is a retry after the first found no valid part, and which part a search
-// finds depends on its random numbers as much as on its grammar
-// (docs/ablation_composition.md: five seeds of one scene); so each pass draws
-// its own, derived from the problem's seed (docs/pipeline.md "Later passes").
+// on: the seed retries). A later pass runs because the ones before found no
+// valid part, and which part a search finds depends on its random numbers as
+// much as on its grammar (docs/ablation_composition.md: five seeds of one
+// scene); so each pass draws its own, derived from the problem's seed
+// (docs/pipeline.md, step 4d).
 Problem pass_scene(const Problem& scene, int pass) {
   Problem p = scene;
   p.search.seed = ChainRng::seed_for(scene.search.seed, 1000 + pass);
   return p;
 }
 
-// Retries (docs/pipeline.md "Retries"): while no pass has a valid part, the
+// Seed retries (docs/pipeline.md, step 4d): while no pass has a valid part, the
 // plain search again with a fresh seed, up to options.seed_retries times. Which
 // part a search finds depends on its seed: a load that one seed leaves without
 // a part, another often solves. Only loads without a part pay for them.

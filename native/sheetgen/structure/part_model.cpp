@@ -235,6 +235,13 @@ void bond_load_box(PartModel& pm, const Load& load, double t) {
 
 }  // namespace
 
+int flange_rivet_count(const Problem& problem, const PlateGeometry& geometry) {
+  const RivetPoints rivets = lay_out_flange_rivets(geometry, SheetSpec::from(problem), flange_rivet_options(problem));
+  size_t n = 0;
+  for (const RivetLayout& layout : rivets.layouts) n += layout.points.size();
+  return static_cast<int>(n);
+}
+
 PartModel build_part_model(const Problem& problem, int load_index, const PlateGeometry& geometry, const PartModelOptions& options) {
   check_part_model_inputs(problem, load_index, geometry);
   const double t = problem.material.thickness;

@@ -73,6 +73,12 @@ std::vector<std::vector<Vec3>> bend_keep_out(const PlateGeometry& geometry, int 
 PartModel build_part_model(const Problem& problem, int load_index, const PlateGeometry& geometry,
                            const PartModelOptions& options = {});
 
+// How many rivets build_part_model() sets on the geometry's flanges (the same
+// layout, without a mesh): what the part's cost counts before its FEM. Throws
+// FemError like build_part_model() when a flange holds no rivet or there is
+// no flange.
+int flange_rivet_count(const Problem& problem, const PlateGeometry& geometry);
+
 // A part's answer to its load: over every case of the load (one for a
 // one-force load), the numbers of the case that governs each check.
 struct StructuralResult {

@@ -29,10 +29,12 @@ struct WebDesign {
 };
 
 // Per side of the box: a web down from the base's side edge, a web on its front
-// vertical edge (5 deg kink, inwards) to the frame with a flange, and a leg from
-// that web's lower edge (5 deg) to the floor (z = 0) with a flange.
+// vertical edge (kinked inwards by the grammar's smallest bend,
+// min_bend_angle) to the frame with a flange, and a leg from that web's lower
+// edge (kinked as much) to the floor (z = 0) with a flange.
 Part web_part(const Problem& p, const WebDesign& d) {
   const SheetSpec spec = SheetSpec::from(p);
+  const double kink = p.manufacturing.min_bend_angle;
   Part part = make_base_part(p.loads[0], 0, p.material.thickness);
   const RealisedPart rb = realise(part);
   const double edge = (rb.tabs[0].corners[1] - rb.tabs[0].corners[0]).norm();  // the +-y edges run along x
@@ -42,7 +44,7 @@ Part web_part(const Problem& p, const WebDesign& d) {
     // bottom); edge 2 (+y) runs -x, so the front edge is the start side (1, from the top).
     const int web = part.add_tab(0, side == 0 ? 0 : 2, TabParameters{0, edge, d.depth, 0, 0, deg(-90)});
     const int front = part.add_tab(web, side == 0 ? kEndSideEdge : kStartSideEdge,
-                                   TabParameters{side == 0 ? 0.0 : cut, d.depth - cut, 0.3, 0, 0, deg(-5)});
+                                   TabParameters{side == 0 ? 0.0 : cut, d.depth - cut, 0.3, 0, 0, -kink});
     if (attach_flange(part, front, RivetPlane{d.frame_area, Vec3(d.frame_x, 0, 0.2), Vec3(-1, 0, 0)}, spec) < 0)
       ADD_FAILURE() << "no frame flange on side " << side;
     const RealisedPart rp = realise(part);
@@ -52,7 +54,7 @@ Part web_part(const Problem& p, const WebDesign& d) {
     const double len = (b - a).norm();
     const double u0 = (d.floor_x0 - a.x()) / (b.x() - a.x()), u1 = (d.floor_x1 - a.x()) / (b.x() - a.x());
     const double lo = std::min(u0, u1), hi = std::max(u0, u1);
-    const int leg = part.add_tab(front, lower, TabParameters{lo * len, (hi - lo) * len, a.z(), 0, 0, deg(side == 0 ? 5 : -5)});
+    const int leg = part.add_tab(front, lower, TabParameters{lo * len, (hi - lo) * len, a.z(), 0, 0, side == 0 ? kink : -kink});
     if (attach_flange(part, leg, RivetPlane{d.floor_area, Vec3(0.3, 0, 0), Vec3(0, 0, 1)}, spec) < 0)
       ADD_FAILURE() << "no floor flange on side " << side;
   }

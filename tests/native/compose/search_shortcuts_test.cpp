@@ -82,7 +82,11 @@ TEST(CostBound, LeavesOutOnlyCandidatesThatCannotMatter) {
       EXPECT_EQ(bounded.valid[i].segments, full.valid[i].segments);
       EXPECT_EQ(bounded.valid[i].cost, full.valid[i].cost);
     }
-    for (const Candidate& v : bounded.valid) EXPECT_FALSE(v.over_cost_bound);
+    for (const Candidate& v : bounded.valid) {
+      EXPECT_FALSE(v.over_cost_bound);
+      // The rivets the cost counted before the FEM are the ones it set.
+      EXPECT_EQ(v.rivets, v.fem.rivets + static_cast<int>(v.self_rivets.size()));
+    }
   }
 }
 
