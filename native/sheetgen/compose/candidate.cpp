@@ -53,7 +53,7 @@ Candidate evaluate_part(const Problem& problem, const Environment& env, int load
   ManufacturingPlan plan = plan_manufacturing(c.part, spec);
   c.area = plan.flat.area();
   c.rivets = count_rivets(problem, c, realised);
-  c.cost = cost_as_sheet_area(problem.cost, problem.material, c.area, c.bends, c.rivets);
+  c.cost = search_score(problem.cost, problem.material, c.area, c.bends, c.rivets);
   if (!plan.ok()) {
     c.reason = plan.status;
     c.message = plan.message;

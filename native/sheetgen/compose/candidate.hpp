@@ -31,7 +31,7 @@ struct Candidate {
   double area = 0;                 // m^2, flat-pattern material
   int bends = 0;
   int rivets = 0;                  // flange rivets (as the FEM lays them out) and self-rivets
-  double cost = 0;                 // m^2 of sheet, cost_as_sheet_area(): material, bends and rivets
+  double cost = 0;                 // m^2, the composition's score: search_score() (core/cost_model.hpp)
   std::vector<SelfRivetTie> self_rivets;  // gusset rivets (paper Sec. 5.2), tied in the FEM
   bool over_cost_bound = false;    // geometry ok, but not analysed: dearer than the valid parts kept
   bool screened_out = false;       // analysed on the screening mesh only, not among the best there (fem is that result)

@@ -23,9 +23,19 @@ double cost_as_sheet_area(const CostModel& model, const Material& material, doub
   return area_m2 + (c.bends + c.rivets) / sheet_price_per_m2(model, material);
 }
 
+double search_score(const CostModel& model, const Material& material, double area_m2, int bends, int rivets) {
+  if (model.rank_by_cost) return cost_as_sheet_area(model, material, area_m2, bends, rivets);
+  return area_m2 + kAreaObjectiveBendCost * bends;
+}
+
 void parse_cost_model(const JsonNode& node, CostModel& model) {
   node.expect_object();
-  reject_unknown(node, {"currency", "material_per_kg", "per_bend", "per_rivet", "setup", "batch_size"});
+  reject_unknown(node, {"currency", "material_per_kg", "per_bend", "per_rivet", "setup", "batch_size", "objective"});
+  if (auto o = node.find("objective")) {
+    const std::string use = o->as_string();
+    if (use != "area" && use != "cost") o->fail("must be \"area\" or \"cost\", got \"" + use + "\"");
+    model.rank_by_cost = use == "cost";
+  }
   if (auto c = node.find("currency")) {
     model.currency = c->as_string();
     if (model.currency.empty()) c->fail("must name a currency (e.g. \"USD\")");

@@ -1,9 +1,10 @@
 #pragma once
 // What a part costs to make (docs/cost.md): the sheet it is cut from, its
 // bends, its rivets and its share of the batch's set-up, at prices the problem
-// file may give (`cost`). The composition ranks candidates by this cost,
-// expressed in square metres of the part's sheet; result.json reports it in
-// money beside mass and area.
+// file may give (`cost`). result.json reports it in money beside mass and
+// area. The composition ranks candidates by it, in square metres of the part's
+// sheet, when the problem asks (`cost.objective` "cost"); by default it ranks
+// by area + 2e-3 m^2 per bend (search_score()).
 #include <string>
 
 namespace sheetgen {
@@ -20,6 +21,10 @@ struct CostModel {
   double per_rivet = 1.00;      // currency per rivet set (drill, deburr, install), flange and self-rivets alike
   double setup = 60.0;          // currency per batch: laser nest and press-brake tooling set-up
   int batch_size = 10;          // parts made per set-up
+  // What the composition ranks by: false ("area", the default) area + 2e-3 m^2
+  // per bend; true ("cost") cost_as_sheet_area() (docs/cost.md "How the
+  // search uses it").
+  bool rank_by_cost = false;
 };
 
 // One part's cost, split as a shop would quote it; currency of the model.
@@ -38,6 +43,11 @@ PartCost part_cost(const CostModel& model, const Material& material, double area
 // divided by the price of one square metre of its sheet. A part with no bends
 // and no rivets scores its flat-pattern area.
 double cost_as_sheet_area(const CostModel& model, const Material& material, double area_m2, int bends, int rivets);
+
+// The composition's score of a part, m^2: cost_as_sheet_area() when the model
+// ranks by cost, else the area objective area + kAreaObjectiveBendCost * bends.
+double search_score(const CostModel& model, const Material& material, double area_m2, int bends, int rivets);
+inline constexpr double kAreaObjectiveBendCost = 2.0e-3;  // m^2 per bend (about a 45 mm square)
 
 // The price of a square metre of the sheet, currency/m^2.
 double sheet_price_per_m2(const CostModel& model, const Material& material);

@@ -180,33 +180,35 @@ bool merge_pass(LoadOutcome& best, LoadOutcome&& pass, const Problem& scene) {
   return keep;
 }
 
-// The scene of a load's later pass (1: web roots, 2: flat extensions, 3 and
-// on: the seed retries). A later pass runs because the ones before found no
-// valid part, and which part a search finds depends on its random numbers as
-// much as on its grammar (docs/ablation_composition.md: five seeds of one
-// scene); so each pass draws its own, derived from the problem's seed
-// (docs/pipeline.md, step 4d).
-Problem pass_scene(const Problem& scene, int pass) {
+// The scene of a load's seed retry k (1, 2, ...): its own random numbers,
+// derived from the problem's seed (docs/pipeline.md, step 4d).
+Problem retry_scene_of(const Problem& scene, int k) {
   Problem p = scene;
-  p.search.seed = ChainRng::seed_for(scene.search.seed, 1000 + pass);
+  p.search.seed = ChainRng::seed_for(scene.search.seed, 1000 + k);
   return p;
 }
 
-// Seed retries (docs/pipeline.md, step 4d): while no pass has a valid part, the
-// plain search again with a fresh seed, up to options.seed_retries times. Which
-// part a search finds depends on its seed: a load that one seed leaves without
-// a part, another often solves. Only loads without a part pay for them.
+// Seed retries (docs/pipeline.md, step 4d): while no pass has a valid part,
+// the pass whose candidate came nearest to valid again (its roots and grammar)
+// with a fresh seed, up to options.seed_retries times. Which part a search
+// finds depends on its seed: a load that one seed leaves without a part,
+// another often solves. Only loads without a part pay for them.
 void retry_with_fresh_seeds(const Problem& scene, const Environment& env, int li, const LoadOutcome& start,
                             const GenerateOptions& options, GenerateProgress* progress, LoadSearch& s) {
   LoadOutcome& best = s.answer;
   for (int k = 1; k <= options.seed_retries && s.finished && !best.ok && !cancel_requested(progress); ++k) {
+    const bool web_roots = best.web_roots, flat = s.flat_scene.has_value();
+    Problem retry_scene = retry_scene_of(flat ? *s.flat_scene : scene, k);
     LoadOutcome retry = start;
-    s.finished = search_pass(pass_scene(scene, 2 + k), env, li, options, /*web_roots=*/false, progress, retry);
+    if (progress) progress->flat_pass = flat;
+    s.finished = search_pass(retry_scene, env, li, options, web_roots, progress, retry);
+    if (progress) progress->flat_pass = false;
     retry.web_pass_tried = best.web_pass_tried;
     retry.flat_pass_tried = best.flat_pass_tried;
+    retry.flat_pass = flat;
     retry.seed_retries_tried = best.seed_retries_tried = k;
     retry.seed_retry = k;
-    if (merge_pass(best, std::move(retry), scene)) s.flat_scene.reset();
+    if (merge_pass(best, std::move(retry), scene) && flat) s.flat_scene = std::move(retry_scene);
   }
 }
 }  // namespace
@@ -223,7 +225,7 @@ LoadSearch search_load(const Environment& env, int li, const LoadOutcome& start,
   s.finished = search_pass(scene, env, li, options, /*web_roots=*/false, progress, first);
   if (s.finished && !first.ok && options.web_fallback && !cancel_requested(progress)) {
     LoadOutcome webbed = start;
-    s.finished = search_pass(pass_scene(scene, 1), env, li, options, /*web_roots=*/true, progress, webbed);
+    s.finished = search_pass(scene, env, li, options, /*web_roots=*/true, progress, webbed);
     webbed.web_pass_tried = first.web_pass_tried = true;
     merge_pass(first, std::move(webbed), scene);
   }
@@ -232,7 +234,7 @@ LoadSearch search_load(const Environment& env, int li, const LoadOutcome& start,
   // plain and web searches stay 26 % over its compliance limit, this one finds
   // a valid part.
   if (s.finished && !first.ok && flat_fallback && !cancel_requested(progress)) {
-    Problem flat_scene = pass_scene(scene, 2);
+    Problem flat_scene = scene;
     flat_scene.manufacturing.flat_extensions = true;
     LoadOutcome flat = start;
     if (progress) progress->flat_pass = true;

@@ -44,6 +44,19 @@ std::vector<Vec3> strip(const std::vector<Vec3>& into, const Vec3& a, const Vec3
   return {p, q, q + depth * v, p + depth * v};
 }
 
+// The larger |tan| of the angle between a tab's side edges and the normal to
+// its root (corners 0-1): 0 for a square tab.
+double side_skew(const std::vector<Vec3>& tab) {
+  if (tab.size() < 4) return 0.0;
+  const Vec3 u = (tab[1] - tab[0]).normalized();
+  double skew = 0;
+  for (const Vec3& side : {Vec3(tab.back() - tab[0]), Vec3(tab[2] - tab[1])}) {
+    const double along = side.dot(u), across = (side - along * u).norm();
+    if (across > 0) skew = std::max(skew, std::abs(along) / across);
+  }
+  return skew;
+}
+
 }  // namespace
 
 std::vector<std::vector<Vec3>> bend_keep_out(const PlateGeometry& g, int k, const SheetSpec& sheet) {
@@ -59,10 +72,13 @@ std::vector<std::vector<Vec3>> bend_keep_out(const PlateGeometry& g, int k, cons
   }
   // Each bent child: its bend zone on this polygon's edge, with the relief
   // notches cut beside it (width t, bend_zone_depth deep; FlatPatternOptions).
+  // A skewed child's notches follow its side edges into this polygon, so they
+  // reach depth * tan(skew) further along the edge than a square notch.
   for (size_t c = 0; c < g.polygons.size(); ++c) {
     if (g.parent[c] != k || !(g.bend_angle[c] > 0) || g.polygons[c].size() < 2) continue;
-    zones.push_back(strip(poly, g.polygons[c][0], g.polygons[c][1], sheet.thickness,
-                          bend_zone_depth(g.bend_angle[c], sheet)));
+    const double depth = bend_zone_depth(g.bend_angle[c], sheet);
+    zones.push_back(strip(poly, g.polygons[c][0], g.polygons[c][1], sheet.thickness + depth * side_skew(g.polygons[c]),
+                          depth));
   }
   return zones;
 }

@@ -120,6 +120,8 @@ TEST(Problem, EveryBadInputGivesOneSentenceAndExitCodeOne) {
       {"free sheet", [](json& j, Files&) { j["cost"]["material_per_kg"] = 0; }, "cost.material_per_kg", "greater than zero"},
       {"negative bend price", [](json& j, Files&) { j["cost"]["per_bend"] = -1; }, "cost.per_bend", "must not be negative, got -1"},
       {"empty batch", [](json& j, Files&) { j["cost"]["batch_size"] = 0; }, "cost.batch_size", "must lie in [1, 1000000] parts, got 0"},
+      {"unknown objective", [](json& j, Files&) { j["cost"]["objective"] = "mass"; }, "cost.objective",
+       "must be \"area\" or \"cost\", got \"mass\""},
       {"unknown cost field", [](json& j, Files&) { j["cost"]["per_weld"] = 3; }, "cost", "unknown field 'per_weld'"},
       {"inline triangle index", [](json& j, Files&) { j["environment"]["meshes"][1]["triangles"][1][2] = 9; }, "environment.meshes[1].triangles[1][2]", "out of range"},
   };
