@@ -3,8 +3,8 @@
 // bends, its rivets and its share of the batch's set-up, at prices the problem
 // file may give (`cost`). result.json reports it in money beside mass and
 // area. The composition ranks candidates by it, in square metres of the part's
-// sheet, when the problem asks (`cost.objective` "cost"); by default it ranks
-// by area + 2e-3 m^2 per bend (search_score()).
+// sheet (search_score()); `cost.objective` "area" ranks by area + 2e-3 m^2
+// per bend instead, the paper's objective with our weight for a bend.
 #include <string>
 
 namespace sheetgen {
@@ -21,10 +21,10 @@ struct CostModel {
   double per_rivet = 1.00;      // currency per rivet set (drill, deburr, install), flange and self-rivets alike
   double setup = 60.0;          // currency per batch: laser nest and press-brake tooling set-up
   int batch_size = 10;          // parts made per set-up
-  // What the composition ranks by: false ("area", the default) area + 2e-3 m^2
-  // per bend; true ("cost") cost_as_sheet_area() (docs/cost.md "How the
-  // search uses it").
-  bool rank_by_cost = false;
+  // What the composition ranks by: true ("cost", the default)
+  // cost_as_sheet_area(); false ("area") area + 2e-3 m^2 per bend (docs/cost.md
+  // "How the search uses it").
+  bool rank_by_cost = true;
 };
 
 // One part's cost, split as a shop would quote it; currency of the model.

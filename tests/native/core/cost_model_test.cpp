@@ -51,19 +51,19 @@ TEST(CostModel, SearchScoreIsTheCostInSheetArea) {
   EXPECT_NEAR(cost_as_sheet_area(model, thick, 0.1, 1, 0), 0.1 + 1.0 / 133.44, 1e-12);
 }
 
-TEST(CostModel, TheSearchRanksByCostOnlyWhenAsked) {
+TEST(CostModel, TheSearchRanksByCostUnlessAskedForArea) {
   CostModel model;
   const Material al;
-  EXPECT_FALSE(model.rank_by_cost);
-  EXPECT_DOUBLE_EQ(search_score(model, al, 0.1, 4, 6), 0.1 + 4 * 2e-3);  // the area objective
-  model.rank_by_cost = true;
+  EXPECT_TRUE(model.rank_by_cost);  // the default
   EXPECT_DOUBLE_EQ(search_score(model, al, 0.1, 4, 6), cost_as_sheet_area(model, al, 0.1, 4, 6));
+  model.rank_by_cost = false;       // "objective": "area"
+  EXPECT_DOUBLE_EQ(search_score(model, al, 0.1, 4, 6), 0.1 + 4 * 2e-3);
 }
 
 TEST(CostModel, ProblemFileSetsEveryWeight) {
   const nlohmann::json j = nlohmann::json::parse(
       R"({"currency": "EUR", "material_per_kg": 20, "per_bend": 0.5, "per_rivet": 0, "setup": 45, "batch_size": 3,
-          "objective": "cost"})");
+          "objective": "area"})");
   CostModel m;
   parse_cost_model(JsonNode(j, "p.json", "cost"), m);
   EXPECT_EQ(m.currency, "EUR");
@@ -72,7 +72,7 @@ TEST(CostModel, ProblemFileSetsEveryWeight) {
   EXPECT_DOUBLE_EQ(m.per_rivet, 0.0);  // free rivets are allowed
   EXPECT_DOUBLE_EQ(m.setup, 45.0);
   EXPECT_EQ(m.batch_size, 3);
-  EXPECT_TRUE(m.rank_by_cost);
+  EXPECT_FALSE(m.rank_by_cost);
   EXPECT_DOUBLE_EQ(part_cost(m, Material{}, 0, 0, 0).setup, 15.0);
   // Absent fields keep their defaults.
   const nlohmann::json partial = nlohmann::json::parse(R"({"per_bend": 2})");
