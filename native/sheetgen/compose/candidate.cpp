@@ -66,10 +66,10 @@ Candidate evaluate_part(const Problem& problem, const Environment& env, int load
   }
   // After the cost bound: a candidate the bound drops is never bent.
   if (problem.manufacturing.press_brake_required) {
-    plan_press_brake(plan, c.part, spec, {}, kSearchPressBrakeSweeps);
+    plan_press_brake(plan, c.part, spec, problem.manufacturing.press_brake_tools, {}, kSearchPressBrakeSweeps);
     if (!plan.press.ok) {
       c.reason = ValidityReason::PressBrake;
-      c.message = "no bend order the press brake's standard tools make: " + plan.press.message;
+      c.message = "no bend order the press brake's tools make: " + plan.press.message;
       return c;
     }
   }

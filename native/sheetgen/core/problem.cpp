@@ -396,12 +396,13 @@ void parse_settings(const JsonNode& root, Problem& p) {
     m->expect_object();
     reject_unknown(*m, {"bend_radius", "k_factor", "kerf", "min_flange", "min_tab_width", "min_tab_length", "max_tab_length",
                         "min_bend_angle", "max_bend_angle", "max_skew", "rivet_diameter", "rivet_edge_distance", "rivet_pitch",
-                        "press_brake"});
+                        "press_brake", "press_brake_tools"});
     if (std::optional<JsonNode> pb = m->find("press_brake")) {
       const std::string use = pb->as_string();
       if (use != "report" && use != "require") pb->fail("must be \"report\" or \"require\", got \"" + use + "\"");
       mf.press_brake_required = use == "require";
     }
+    if (std::optional<JsonNode> tools = m->find("press_brake_tools")) parse_press_brake_tooling(*tools, mf.press_brake_tools);
   }
   auto pos = [&](const char* key, double fallback) { return m ? m->positive_or(key, fallback) : fallback; };
   auto nonneg = [&](const char* key, double fallback) { return m ? m->non_negative_or(key, fallback) : fallback; };

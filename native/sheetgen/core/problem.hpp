@@ -9,6 +9,7 @@
 
 #include "sheetgen/core/cost_model.hpp"
 #include "sheetgen/core/load_cases.hpp"
+#include "sheetgen/core/press_brake_tooling.hpp"
 #include "sheetgen/core/triangle_mesh.hpp"
 
 namespace sheetgen {
@@ -117,11 +118,12 @@ struct Manufacturing {  // lengths m, angles rad; defaults depend on thickness t
   double rivet_diameter = 0;     // default: 2 t rounded up to 1/32 in, at least 3.2 mm (1/8 in)
   double rivet_edge_distance = 0;// default 2 * rivet_diameter (MIL-HDBK practice)
   double rivet_pitch = 0;        // default 6 * rivet_diameter
-  // The standard press-brake tools (part/press_brake.hpp). Off ("report", the
+  // The press-brake tools (part/press_brake.hpp). Off ("report", the
   // default): the answer's bend sequence is checked and the result says
   // whether the tools make it. On ("require"): a candidate they cannot bend is
   // invalid in the search as well.
   bool press_brake_required = false;
+  PressBrakeTooling press_brake_tools = default_press_brake_tooling();  // `press_brake_tools`
 };
 
 struct SearchSettings {

@@ -12,5 +12,6 @@ set(SHEETGEN_CORE_SOURCES
   json_reader.cpp
   load_cases.cpp
   cost_model.cpp
+  press_brake_tooling.cpp
   problem.cpp
 )

@@ -20,13 +20,13 @@ ManufacturingPlan plan_manufacturing(const Part& part, const SheetSpec& spec, co
     plan.status = plan.sequence.status;
     plan.message = plan.sequence.message;
   }
-  if (o.press_brake && plan.sequence.ok()) plan_press_brake(plan, part, spec, o.bends, o.press_brake_sweeps);
+  if (o.press_brake && plan.sequence.ok()) plan_press_brake(plan, part, spec, o.press_brake_tools, o.bends, o.press_brake_sweeps);
   return plan;
 }
 
 void plan_press_brake(ManufacturingPlan& plan, const Part& part, const SheetSpec& spec,
-                      const BendSequenceOptions& bends, int sweeps) {
-  plan.tools = standard_tool_set(spec.thickness);
+                      const PressBrakeTooling& tooling, const BendSequenceOptions& bends, int sweeps) {
+  plan.tools = make_tool_set(tooling, spec.thickness);
   plan.press_checked = true;
   // The press-aware search walks the orders in the part-only search's order,
   // so when every bend of the part-only order can be made it would return

@@ -16,9 +16,10 @@ struct ManufacturingPlanOptions {
   BendSequenceOptions bends;
   ValidityOptions validity;  // stop_at_first etc. for the flat overlap check
   bool plan_bends_when_flat_fails = false;  // skip the (costlier) bend search when the flat pattern is already invalid
-  // Check the bend sequence on the standard press-brake tools
+  // Check the bend sequence on the press-brake tools below
   // (plan_press_brake): plan.press, and the tools in bends.csv.
   bool press_brake = false;
+  PressBrakeTooling press_brake_tools = default_press_brake_tooling();
   int press_brake_sweeps = 200;  // budget of plan_press_brake's order search
 };
 
@@ -39,15 +40,15 @@ struct ManufacturingPlan {
 
 ManufacturingPlan plan_manufacturing(const Part& part, const SheetSpec& spec, const ManufacturingPlanOptions& options = {});
 
-// The press-brake step of a plan whose bend sequence is ok: the standard tool
-// set for the sheet, and plan.press. The part-only order is kept when the tools
+// The press-brake step of a plan whose bend sequence is ok: `tooling` drawn
+// for the sheet (plan.tools), and plan.press. The part-only order is kept when the tools
 // make each of its bends; otherwise the bend-sequence search runs again, taking
 // a bend next only when a tool makes it, within `sweeps` sweeps, and its order
 // replaces the part-only one when it finds one. When neither works, plan.press
 // names the bend no tool makes and why; plan.status is left as it is (the
 // caller decides whether that makes the part invalid).
 void plan_press_brake(ManufacturingPlan& plan, const Part& part, const SheetSpec& spec,
-                      const BendSequenceOptions& bends, int sweeps);
+                      const PressBrakeTooling& tooling, const BendSequenceOptions& bends, int sweeps);
 
 // Fills plan.holes: the rivets mapped into the flat pattern, self-rivets
 // numbered against the plan's bending order.

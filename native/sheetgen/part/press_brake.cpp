@@ -20,35 +20,49 @@ constexpr double kFar = 10.0;  // m, half-length along Z of the ram and the bed 
 
 std::vector<Vec2> quad(Vec2 a, Vec2 b, Vec2 c, Vec2 d) { return {a, b, c, d}; }
 
-// Straight punch: the tip wedge up to where it is 20 mm wide, then a 20 mm body.
-PunchTool straight_punch(double tip_angle, double height) {
-  const double tau = std::tan(tip_angle / 2), b = 0.010, hw = b / tau;
-  PunchTool p{"straight " + std::to_string(static_cast<int>(std::lround(tip_angle / kDeg))) + " deg", {}, tip_angle,
-              height};
+std::string degrees(double rad) { return std::to_string(static_cast<int>(std::lround(rad / kDeg))); }
+
+// The punch's name: the spec's, else its kind and tip angle, with its height
+// when that is not the standard 120 mm (a tool set may hold a tall one too).
+std::string punch_name(const PunchSpec& s) {
+  if (!s.name.empty()) return s.name;
+  std::string n = (s.kind == PunchKind::Straight ? "straight " : "gooseneck ") + degrees(s.tip_angle) + " deg";
+  if (std::abs(s.height - 0.120) > 1e-6) n += " " + std::to_string(static_cast<int>(std::lround(s.height * 1e3))) + " mm";
+  return n;
+}
+
+// Straight punch: the tip wedge up to where it is body_width wide, then the body.
+PunchTool straight_punch(const PunchSpec& s) {
+  const double tau = std::tan(s.tip_angle / 2), b = s.body_width / 2, hw = b / tau;
+  PunchTool p{punch_name(s), {}, s.tip_angle, s.height};
   p.pieces.push_back({Vec2(0, 0), Vec2(b, hw), Vec2(-b, hw)});
-  p.pieces.push_back(quad(Vec2(-b, hw), Vec2(b, hw), Vec2(b, height), Vec2(-b, height)));
+  p.pieces.push_back(quad(Vec2(-b, hw), Vec2(b, hw), Vec2(b, s.height), Vec2(-b, s.height)));
   return p;
 }
 
 // Gooseneck: a short tip wedge, a slender column along the wedge's -X face and
-// a head reaching back over +X: the space between (the throat, 12-80 mm above
-// the tip on +X) takes a return flange. Every piece lies inside the tip's cone,
-// so the bend's own flanges, outside that cone, clear them all.
-PunchTool gooseneck_punch(double tip_angle, double height) {
-  const double tau = std::tan(tip_angle / 2), h1 = 0.012, h2 = 0.080, c = 2 * h1 * tau;
-  PunchTool p{"gooseneck " + std::to_string(static_cast<int>(std::lround(tip_angle / kDeg))) + " deg", {}, tip_angle,
-              height};
+// a head reaching back over +X: the space between (the throat, throat_bottom
+// to throat_top above the tip on +X) takes a return flange. Every piece lies
+// inside the tip's cone, so the bend's own flanges, outside that cone, clear them all.
+PunchTool gooseneck_punch(const PunchSpec& s) {
+  const double tau = std::tan(s.tip_angle / 2), h1 = s.throat_bottom, h2 = s.throat_top, c = 2 * h1 * tau;
+  PunchTool p{punch_name(s), {}, s.tip_angle, s.height};
   p.pieces.push_back({Vec2(0, 0), Vec2(h1 * tau, h1), Vec2(-h1 * tau, h1)});
   p.pieces.push_back(quad(Vec2(-h1 * tau, h1), Vec2(h1 * tau, h1), Vec2(-h2 * tau + c, h2), Vec2(-h2 * tau, h2)));
   const double reach = h2 * tau;  // the head's overhang on +X: the cone's half-width at the throat's top
-  p.pieces.push_back(quad(Vec2(-h2 * tau, h2), Vec2(reach, h2), Vec2(reach, height), Vec2(-height * tau, height)));
+  p.pieces.push_back(quad(Vec2(-h2 * tau, h2), Vec2(reach, h2), Vec2(reach, s.height), Vec2(-s.height * tau, s.height)));
   return p;
 }
 
-DieTool v_die(double v, double angle, double ratio) {
-  char name[64];
-  std::snprintf(name, sizeof name, "V%.3g %.0f deg", v * 1e3, angle / kDeg);
-  return DieTool{name, v, angle, 0.060, std::max(0.030, 3 * v), ratio};
+DieTool v_die(const PressBrakeTooling& tooling, const DieSpec& s, double t) {
+  const double v = die_opening(tooling, s, t);
+  std::string name = s.name;
+  if (name.empty()) {
+    char buf[64];
+    std::snprintf(buf, sizeof buf, "V%.3g %.0f deg", v * 1e3, s.angle / kDeg);
+    name = buf;
+  }
+  return DieTool{name, v, s.angle, s.height, s.width > 0 ? s.width : std::max(0.030, 3 * v), s.min_flange_ratio};
 }
 
 // ---- geometry in the tool frame
@@ -326,15 +340,17 @@ class BendCheck {
 
 }  // namespace
 
-ToolSet standard_tool_set(double t) {
+ToolSet make_tool_set(const PressBrakeTooling& tooling, double t) {
   ToolSet s;
-  s.punches = {straight_punch(30 * kDeg, 0.120), gooseneck_punch(30 * kDeg, 0.120)};
-  // 8 t first (the usual choice for aluminium sheet), then the narrower and
-  // the wider; the acute die last, for bends past 90 deg.
-  for (double m : {8.0, 6.0, 10.0, 12.0}) s.dies.push_back(v_die(std::max(4e-3, m * t), 85 * kDeg, 0.7));
-  s.dies.push_back(v_die(std::max(4e-3, 8 * t), 30 * kDeg, 1.1));
+  for (const PunchSpec& p : tooling.punches)
+    s.punches.push_back(p.kind == PunchKind::Straight ? straight_punch(p) : gooseneck_punch(p));
+  for (const DieSpec& d : tooling.dies) s.dies.push_back(v_die(tooling, d, t));
+  s.machine = PressBrakeMachine{tooling.ram_width, tooling.bed_width, tooling.open_height};
+  s.springback = tooling.springback;
   return s;
 }
+
+ToolSet standard_tool_set(double t) { return make_tool_set(default_press_brake_tooling(), t); }
 
 BendToolChoice choose_bend_tools(const Part& part, int k, const std::vector<double>& angles, const SheetSpec& spec,
                                  const ToolSet& tools) {

@@ -15,6 +15,7 @@
 #include <string>
 #include <vector>
 
+#include "sheetgen/core/press_brake_tooling.hpp"
 #include "sheetgen/part/validity.hpp"
 
 namespace sheetgen {
@@ -38,24 +39,27 @@ struct DieTool {
   double min_flange_ratio = 0;  // the shortest flange that stays on the shoulders, as a share of v_opening
 };
 
-struct PressBrakeMachine {
-  double ram_width = 0.06;    // m, across the bend: the ram and punch holder above the punch
-  double bed_width = 0.10;    // m, across the bend: the bed and die holder below the die
-  double open_height = 0.40;  // m, bed to ram with the ram up (the daylight)
+struct PressBrakeMachine {  // defaults: PressBrakeTooling's
+  double ram_width = PressBrakeTooling{}.ram_width;      // m, across the bend: the ram and punch holder above the punch
+  double bed_width = PressBrakeTooling{}.bed_width;      // m, across the bend: the bed and die holder below the die
+  double open_height = PressBrakeTooling{}.open_height;  // m, bed to ram with the ram up (the daylight)
 };
 
 struct ToolSet {
   std::vector<PunchTool> punches;  // in the order they are tried
   std::vector<DieTool> dies;       // in the order they are tried
   PressBrakeMachine machine;
-  double springback = 3.0 * M_PI / 180.0;  // rad, overbend beyond the bend angle while under load
+  double springback = PressBrakeTooling{}.springback;  // rad, overbend beyond the bend angle while under load
   double gap = 0.5e-3;                     // m, kept beyond t/2 between the sheet and a tool or the machine
   double max_step = 2.0 * M_PI / 180.0;    // rad, largest angle step between checked states of a stroke
 };
 
-// A straight and a gooseneck punch (30 deg tips, 120 mm high), 85 deg V-dies
-// of 6, 8, 10 and 12 t and a 30 deg die of 8 t (4 mm at least), the machine
-// above. docs/manufacturing.md "Press brake" gives the figures and sources.
+// The tools a problem describes (core/press_brake_tooling.hpp), drawn for
+// sheet of the given thickness (m): the dies' openings scale with it.
+ToolSet make_tool_set(const PressBrakeTooling& tooling, double thickness);
+
+// make_tool_set of default_press_brake_tooling(). docs/manufacturing.md "Press
+// brake" gives the figures and sources.
 ToolSet standard_tool_set(double thickness);
 
 struct BendTooling {

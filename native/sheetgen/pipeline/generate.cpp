@@ -187,6 +187,7 @@ void plan_answer(const Problem& answer_scene, int li, LoadOutcome& out) {
   out.realised = realise(out.part.part);
   ManufacturingPlanOptions mo;
   mo.press_brake = true;
+  mo.press_brake_tools = answer_scene.manufacturing.press_brake_tools;
   out.plan = plan_manufacturing(out.part.part, SheetSpec::from(answer_scene), mo);
   if (out.ok) place_rivets(answer_scene, li, out);
 }

@@ -87,6 +87,32 @@ TEST(Problem, PressBrakeIsRequiredOnlyWhenAsked) {
   }
 }
 
+TEST(Problem, PressBrakeToolsReplaceListsAndKeepOmittedSizes) {
+  Files files;
+  json j = valid_problem();
+  j["manufacturing"]["press_brake_tools"] = json::parse(R"({
+    "punches": [{"name": "box punch", "kind": "straight", "height": 0.3}, {"kind": "gooseneck", "throat_top": 0.1}],
+    "dies": [{"v_opening": 0.01, "angle": 1.5}],
+    "open_height": 0.7})");
+  const PressBrakeTooling t = load_problem(files.write("tools.json", j.dump())).manufacturing.press_brake_tools;
+  ASSERT_EQ(t.punches.size(), 2u);
+  EXPECT_EQ(t.punches[0].name, "box punch");
+  EXPECT_DOUBLE_EQ(t.punches[0].height, 0.3);
+  EXPECT_EQ(t.punches[1].kind, PunchKind::Gooseneck);
+  EXPECT_DOUBLE_EQ(t.punches[1].throat_top, 0.1);
+  EXPECT_DOUBLE_EQ(t.punches[1].height, PunchSpec{}.height);  // left out: the default
+  ASSERT_EQ(t.dies.size(), 1u);
+  EXPECT_DOUBLE_EQ(die_opening(t, t.dies[0], 1.6e-3), 0.01);
+  EXPECT_DOUBLE_EQ(t.dies[0].angle, 1.5);
+  EXPECT_DOUBLE_EQ(t.dies[0].min_flange_ratio, DieSpec{}.min_flange_ratio);
+  EXPECT_DOUBLE_EQ(t.open_height, 0.7);
+  EXPECT_DOUBLE_EQ(t.ram_width, PressBrakeTooling{}.ram_width);
+  // Without the field: the standard set.
+  const Problem d = load_problem(files.write("no_tools.json", valid_problem().dump()));
+  EXPECT_EQ(d.manufacturing.press_brake_tools.punches.size(), default_press_brake_tooling().punches.size());
+  EXPECT_EQ(d.manufacturing.press_brake_tools.dies.size(), default_press_brake_tooling().dies.size());
+}
+
 struct BadCase {
   const char* label;
   std::function<void(json&, Files&)> edit;
@@ -117,6 +143,20 @@ TEST(Problem, EveryBadInputGivesOneSentenceAndExitCodeOne) {
       {"unknown rivet mesh", [](json& j, Files&) { j["rivet_areas"][0]["mesh"] = "ceiling"; }, "rivet_areas[0].mesh", "no environment mesh is named 'ceiling'"},
       {"press-brake use", [](json& j, Files&) { j["manufacturing"]["press_brake"] = "always"; }, "manufacturing.press_brake",
        "must be \"report\" or \"require\", got \"always\""},
+      {"no punches", [](json& j, Files&) { j["manufacturing"]["press_brake_tools"]["punches"] = json::array(); },
+       "manufacturing.press_brake_tools.punches", "must list at least one punch"},
+      {"punch kind", [](json& j, Files&) { j["manufacturing"]["press_brake_tools"]["punches"] = {{{"kind", "swan"}}}; },
+       "manufacturing.press_brake_tools.punches[0].kind", "must be \"straight\" or \"gooseneck\", got \"swan\""},
+      {"gooseneck throat", [](json& j, Files&) { j["manufacturing"]["press_brake_tools"]["punches"] = {{{"kind", "gooseneck"}, {"throat_top", 0.2}}}; },
+       "manufacturing.press_brake_tools.punches[0]", "a gooseneck needs throat_bottom < throat_top < height"},
+      {"die angle", [](json& j, Files&) { j["manufacturing"]["press_brake_tools"]["dies"] = {{{"angle", 4.0}}}; },
+       "manufacturing.press_brake_tools.dies[0].angle", "must lie between 0 and pi (radians), got 4"},
+      {"die opening twice", [](json& j, Files&) { j["manufacturing"]["press_brake_tools"]["dies"] = {{{"v_opening", 0.01}, {"v_per_thickness", 6}}}; },
+       "manufacturing.press_brake_tools.dies[0]", "give v_opening or v_per_thickness, not both"},
+      {"machine too low", [](json& j, Files&) { j["manufacturing"]["press_brake_tools"]["open_height"] = 0.15; },
+       "manufacturing.press_brake_tools", "open_height 0.150 m leaves no room under punches[0] (0.120 m high) on the lowest die (0.060 m)"},
+      {"unknown tool field", [](json& j, Files&) { j["manufacturing"]["press_brake_tools"]["tonnage"] = 100; },
+       "manufacturing.press_brake_tools", "unknown field 'tonnage'"},
       {"free sheet", [](json& j, Files&) { j["cost"]["material_per_kg"] = 0; }, "cost.material_per_kg", "greater than zero"},
       {"negative bend price", [](json& j, Files&) { j["cost"]["per_bend"] = -1; }, "cost.per_bend", "must not be negative, got -1"},
       {"empty batch", [](json& j, Files&) { j["cost"]["batch_size"] = 0; }, "cost.batch_size", "must lie in [1, 1000000] parts, got 0"},

@@ -38,9 +38,11 @@ ToolSet only_punch(int index) {
 
 TEST(PressBrake, StandardToolsAreTheDocumentedOnes) {
   const ToolSet tools = standard_tool_set(1.6e-3);
-  ASSERT_EQ(tools.punches.size(), 2u);
+  ASSERT_EQ(tools.punches.size(), 3u);
   EXPECT_EQ(tools.punches[0].name, "straight 30 deg");
   EXPECT_EQ(tools.punches[1].name, "gooseneck 30 deg");
+  EXPECT_EQ(tools.punches[2].name, "straight 30 deg 180 mm");
+  EXPECT_DOUBLE_EQ(tools.machine.open_height, 0.42);
   ASSERT_EQ(tools.dies.size(), 5u);
   EXPECT_EQ(tools.dies[0].name, "V12.8 85 deg");  // 8 t first
   EXPECT_NEAR(tools.dies[1].v_opening, 6 * 1.6e-3, 1e-15);
@@ -156,14 +158,14 @@ Part strip_with_tall_flange(double depth) {
 }
 
 TEST(PressBrake, TallFlangeUnderTheRamDoesNotFitUnderTheOpenPunch) {
-  // Open height 400 mm - die 60 mm - punch 120 mm: 220 mm under the punch.
-  // On a 20 mm strip the 250 mm flange stands at x = -20 mm, under the 60 mm
-  // wide ram: the part does not go in.
+  // Open height 420 mm - die 60 mm - punch 120 mm: 240 mm under the punch
+  // (under the 180 mm punch, 180 mm). On a 20 mm strip the 250 mm flange
+  // stands at x = -20 mm, under the 60 mm wide ram: the part does not go in.
   const PressBrakeResult r =
       check_press_brake(strip_with_tall_flange(0.02), {1, 2}, spec(), standard_tool_set(spec().thickness));
   ASSERT_FALSE(r.ok);
   EXPECT_EQ(r.failed_tab, 2);
-  EXPECT_NE(r.message.find("the part stands 251 mm above the die, more than the 220 mm under the open punch"),
+  EXPECT_NE(r.message.find("the part stands 251 mm above the die, more than the 240 mm under the open punch"),
             std::string::npos) << r.message;
 }
 
@@ -178,6 +180,46 @@ TEST(PressBrake, TallFlangeBesideTheRamMeetsItAsTheStripRises) {
   ASSERT_FALSE(r.ok);
   EXPECT_EQ(r.failed_tab, 2);
   EXPECT_NE(r.message.find("tab 1 hits the ram above the punch at 4 deg of its 90 deg"), std::string::npos) << r.message;
+}
+
+// A 100 mm square base with a 140 mm side standing on its front edge, then a
+// 30 mm flange on its right edge (80 mm long, 10 mm short of each corner):
+// the corner of an open box 140 mm deep.
+Part open_box_corner() {
+  Part part = fixtures::square_base(0.10);
+  part.add_tab(0, 0, {0.0, 0.10, 0.14, 0, 0, 90 * kDeg});
+  part.add_tab(0, 1, {0.01, 0.08, 0.03, 0, 0, 90 * kDeg});
+  return part;
+}
+
+TEST(PressBrake, ABoxDeeperThanTheStandardPunchesTakesTheTallOne) {
+  // Bending the flange, the side stands 10 mm beyond the end of its bend
+  // line, clear of the segmented punch, but the ram spans the machine. With
+  // the two 120 mm punches alone it comes down to 120.8 mm above the sheet's
+  // mid-surface, over a 140 mm side.
+  const Part part = open_box_corner();
+  PressBrakeTooling tooling = default_press_brake_tooling();
+  tooling.punches.resize(2);
+  const PressBrakeResult low = check_press_brake(part, {1, 2}, spec(), make_tool_set(tooling, spec().thickness));
+  ASSERT_FALSE(low.ok);
+  EXPECT_EQ(low.failed_tab, 2);
+  EXPECT_NE(low.message.find("tab 1 hits the ram above the punch at 0 deg"), std::string::npos) << low.message;
+  // The standard set's 180 mm punch: the side's far corner, 100 mm from the
+  // bend line, rises to at most sqrt(100^2 + 140^2) = 172 mm as the base tips
+  // (at 35.5 deg of tilt), under the ram at 180.8 mm by more than the 1.3 mm
+  // clearance; the open press keeps 420 - 60 - 180 = 180 mm over the 140.8 mm side.
+  const PressBrakeResult standard = check_press_brake(part, {1, 2}, spec(), standard_tool_set(spec().thickness));
+  ASSERT_TRUE(standard.ok) << standard.message;
+  EXPECT_EQ(standard.tooling[0].punch, 0);  // the side itself: the first punch
+  EXPECT_EQ(standard.tooling[1].punch, 2);
+  // On a machine with 20 mm less open height the side no longer goes in under it.
+  tooling = default_press_brake_tooling();
+  tooling.punches = {tooling.punches[2]};
+  tooling.open_height = 0.38;  // 140 mm under the punch
+  const PressBrakeResult shallow = check_press_brake(part, {1, 2}, spec(), make_tool_set(tooling, spec().thickness));
+  ASSERT_FALSE(shallow.ok);
+  EXPECT_NE(shallow.message.find("the part stands 141 mm above the die, more than the 140 mm under the open punch"),
+            std::string::npos) << shallow.message;
 }
 
 TEST(PressBrake, AcuteBendTakesTheAcuteDie) {
@@ -251,7 +293,7 @@ TEST(PressBrake, APartNoOrderSuitsKeepsItsPlanAndNamesTheFailure) {
   EXPECT_FALSE(plan.press.ok);
   EXPECT_EQ(plan.sequence.order, plan_bend_sequence(part, spec()).order);
   EXPECT_EQ(plan.press.failed_tab, plan.sequence.order[1]);
-  EXPECT_NE(plan.press.message.find("the part stands 251 mm above the die, more than the 220 mm under the open punch"),
+  EXPECT_NE(plan.press.message.find("the part stands 251 mm above the die, more than the 240 mm under the open punch"),
             std::string::npos) << plan.press.message;
 }
 
