@@ -311,6 +311,8 @@ class SHEETGEN_PT_results(_Panel, bpy.types.Panel):
                     row.alert = values["compliance"] > values["compliance_limit"]
                 if label == "MS" and values["margin_of_safety"] is not None:
                     row.alert = values["margin_of_safety"] < context.scene.sheetgen.min_margin_of_safety
+                if label == "Press brake":
+                    row.alert = text.startswith("no:")
                 row.label(text=label)
                 row.label(text=text)
             rows = core_result.envelope_rows(part)

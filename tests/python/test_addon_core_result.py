@@ -180,6 +180,17 @@ class Document(unittest.TestCase):
         part["cost"] = {"currency": "EUR", "material": 0.934, "bends": 1.0, "rivets": 2.0, "setup": 6.0, "total": 9.934}
         self.assertEqual(dict(R.report_rows(part))["Cost (EUR)"], "9.93")
 
+    def test_press_brake_row(self):
+        part = bracket()
+        self.assertEqual(dict(R.report_rows(part))["Press brake"], "—")   # a result written before the check
+        part["press_brake"] = {"ok": True, "message": "", "tools": [{"tab": 1, "punch": "straight 30 deg",
+                                                                     "die": "V12.8 85 deg", "turned_over": False}]}
+        self.assertEqual(dict(R.report_rows(part))["Press brake"], "ok, 1 bends")
+        part["press_brake"] = {"ok": False, "message": "bend of tab 1: tab 2 hits the ram above the punch at 4 deg",
+                               "tools": []}
+        self.assertEqual(dict(R.report_rows(part))["Press brake"],
+                         "no: bend of tab 1: tab 2 hits the ram above the punch at 4 deg")
+
 
 if __name__ == "__main__":
     unittest.main()

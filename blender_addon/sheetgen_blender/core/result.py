@@ -358,9 +358,21 @@ def report_rows(part):
     # Material, bends, rivets and the set-up share (docs/cost.md).
     c = values["cost"]
     rows.append(("Cost" + (" (%s)" % values["currency"] if values["currency"] else ""), "—" if c is None else "%.2f" % c))
+    rows.append(("Press brake", press_brake_text(part)))
     t = values["time_s"]
     rows.append(("Run time (s)", "—" if t is None else "%.1f" % t))
     return rows
+
+
+def press_brake_text(part):
+    """Whether the problem's press-brake tools make every bend of the part (docs/manufacturing.md "Press
+    brake"): "ok, N bends", the failing bend and why, or "—" for a result written before the check."""
+    pb = part.get("press_brake")
+    if not isinstance(pb, dict):
+        return "—"
+    if pb.get("ok"):
+        return "ok, %d bends" % len(pb.get("tools") or [])
+    return "no: " + (pb.get("message") or "no bend order found")
 
 
 def status_line(part):
