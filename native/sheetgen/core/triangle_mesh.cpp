@@ -53,4 +53,8 @@ BoundingBox bounding_box(const TriangleMesh& mesh) {
   return b;
 }
 
+double box_gap(const BoundingBox& a, const BoundingBox& b) {
+  return (a.min - b.max).cwiseMax(b.min - a.max).cwiseMax(Vec3::Zero()).norm();
+}
+
 }  // namespace sheetgen

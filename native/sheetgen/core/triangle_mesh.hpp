@@ -35,5 +35,8 @@ struct BoundingBox {
 };
 
 BoundingBox bounding_box(const TriangleMesh& mesh);
+// The gap between two boxes, m (0 when they overlap): a lower bound on the
+// distance between anything inside them, so a cheap test before an exact one.
+double box_gap(const BoundingBox& a, const BoundingBox& b);
 
 }  // namespace sheetgen

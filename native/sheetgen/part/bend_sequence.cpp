@@ -15,10 +15,6 @@ namespace sheetgen {
 
 namespace {
 
-double box_gap(const BoundingBox& a, const BoundingBox& b) {
-  return (a.min - b.max).cwiseMax(b.min - a.max).cwiseMax(Vec3::Zero()).norm();
-}
-
 class Simulator {
  public:
   Simulator(const Part& part, const SheetSpec& spec, const BendSequenceOptions& o)

@@ -206,11 +206,6 @@ bool adjacent(const Part& part, int i, int j) {
   return a.parent == j || b.parent == i || a.riveted_to == j || b.riveted_to == i;
 }
 
-double box_gap(const BoundingBox& a, const BoundingBox& b) {
-  const Vec3 gap = (a.min - b.max).cwiseMax(b.min - a.max).cwiseMax(Vec3::Zero());
-  return gap.norm();
-}
-
 }  // namespace
 
 ValidityReport check_limits(const Part& part, const RealisedPart& rp, const SheetSpec& spec, const ValidityOptions& o) {
