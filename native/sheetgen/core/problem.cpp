@@ -399,8 +399,10 @@ void parse_settings(const JsonNode& root, Problem& p) {
                         "press_brake", "press_brake_tools"});
     if (std::optional<JsonNode> pb = m->find("press_brake")) {
       const std::string use = pb->as_string();
-      if (use != "report" && use != "require") pb->fail("must be \"report\" or \"require\", got \"" + use + "\"");
-      mf.press_brake_required = use == "require";
+      if (use != "report" && use != "prefer" && use != "require")
+        pb->fail("must be \"report\", \"prefer\" or \"require\", got \"" + use + "\"");
+      mf.press_brake_required = use != "report";
+      mf.press_brake_fallback = use == "prefer";
     }
     if (std::optional<JsonNode> tools = m->find("press_brake_tools")) parse_press_brake_tooling(*tools, mf.press_brake_tools);
   }

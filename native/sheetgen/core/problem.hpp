@@ -118,11 +118,15 @@ struct Manufacturing {  // lengths m, angles rad; defaults depend on thickness t
   double rivet_diameter = 0;     // default: 2 t rounded up to 1/32 in, at least 3.2 mm (1/8 in)
   double rivet_edge_distance = 0;// default 2 * rivet_diameter (MIL-HDBK practice)
   double rivet_pitch = 0;        // default 6 * rivet_diameter
-  // The press-brake tools (part/press_brake.hpp). Off ("report", the
-  // default): the answer's bend sequence is checked and the result says
-  // whether the tools make it. On ("require"): a candidate they cannot bend is
-  // invalid in the search as well.
-  bool press_brake_required = false;
+  // The press-brake tools (part/press_brake.hpp, docs/manufacturing.md
+  // "Press brake"). The answer's bend sequence is always checked on them.
+  // `press_brake_required`: the search also refuses a candidate they cannot
+  // bend ("prefer", the default, and "require"). `press_brake_fallback`
+  // ("prefer"): a load for which no such part is found is searched again
+  // without the check, and its answer says which bend the tools cannot make.
+  // "report" turns both off.
+  bool press_brake_required = true;
+  bool press_brake_fallback = true;
   PressBrakeTooling press_brake_tools = default_press_brake_tooling();  // `press_brake_tools`
 };
 

@@ -76,6 +76,9 @@ struct LoadOutcome {
   bool flat_pass = false;            // the answer comes from that third search
   int seed_retries_tried = 0;        // plain searches with fresh seeds after every other pass found no valid part
   int seed_retry = 0;                // 1-based: the answer comes from that retry; 0: from an earlier pass
+  // "prefer" (Manufacturing::press_brake_fallback): no search with the press-brake check found a valid
+  // part, so the load was searched again without it, and the answer comes from that search.
+  bool press_fallback = false;
   double environment_seconds = 0, discovery_seconds = 0, composition_seconds = 0, total_seconds = 0;
 };
 

@@ -213,9 +213,11 @@ void retry_with_fresh_seeds(const Problem& scene, const Environment& env, int li
 }
 }  // namespace
 
-LoadSearch search_load(const Environment& env, int li, const LoadOutcome& start, const GenerateOptions& options,
-                       bool flat_fallback, GenerateProgress* progress) {
-  const Problem& scene = env.problem();
+namespace {
+
+// Every pass of one load in the grammar and checks of `scene`.
+LoadSearch search_passes(const Problem& scene, const Environment& env, int li, const LoadOutcome& start,
+                         const GenerateOptions& options, bool flat_fallback, GenerateProgress* progress) {
   LoadSearch s;
   LoadOutcome& first = s.answer;
   first = start;
@@ -245,6 +247,26 @@ LoadSearch search_load(const Environment& env, int li, const LoadOutcome& start,
     if (merge_pass(first, std::move(flat), scene)) s.flat_scene = std::move(flat_scene);
   }
   retry_with_fresh_seeds(scene, env, li, start, options, progress, s);
+  return s;
+}
+
+}  // namespace
+
+LoadSearch search_load(const Environment& env, int li, const LoadOutcome& start, const GenerateOptions& options,
+                       bool flat_fallback, GenerateProgress* progress) {
+  const Problem& scene = env.problem();
+  LoadSearch s = search_passes(scene, env, li, start, options, flat_fallback, progress);
+  // "prefer" (docs/manufacturing.md "Press brake"): no part the press-brake
+  // tools bend; every pass again without that check. The answer is then a
+  // part that needs other tools, and its plan names the bend and why.
+  if (!s.finished || s.answer.ok || !scene.manufacturing.press_brake_fallback || cancel_requested(progress)) return s;
+  Problem unchecked = scene;
+  unchecked.manufacturing.press_brake_required = false;
+  LoadSearch fallback = search_passes(unchecked, env, li, start, options, flat_fallback, progress);
+  fallback.answer.press_fallback = true;
+  const bool finished = fallback.finished;
+  if (merge_pass(s.answer, std::move(fallback.answer), scene)) s.flat_scene = std::move(fallback.flat_scene);
+  s.finished = finished;
   return s;
 }
 

@@ -1,9 +1,9 @@
-// The composition with `"manufacturing": {"press_brake": "require"}`
-// (docs/manufacturing.md "Press brake"): every valid part it keeps is one the
-// standard press-brake tools bend, by the same plan the answer gets; with the
-// default ("report") the search is unchanged, and on the corner scene its
-// cheapest part is one the tools cannot bend, so the requirement changes the
-// answer.
+// The composition with the press-brake check (`"manufacturing":
+// {"press_brake": "prefer"}`, the default, or "require"; docs/manufacturing.md
+// "Press brake"): every valid part it keeps is one the standard press-brake
+// tools bend, by the same plan the answer gets; without it ("report") the
+// search ignores the tools, and on the corner scene its cheapest part is one
+// the tools cannot bend, so the check changes the answer.
 #include <gtest/gtest.h>
 
 #include <string>
@@ -35,6 +35,7 @@ TEST(PressBrakeSearch, RequiredKeepsOnlyPartsTheToolsBend) {
   co.beam_width = 4;
   co.threads = 2;
 
+  problem.manufacturing.press_brake_required = false;  // "report"
   const ComposeResult reported = compose_part(problem, env, 0, found.base, found.library, co);
   ASSERT_TRUE(reported.found) << reported.reason;
   const ManufacturingPlan reported_plan = answer_plan(problem, reported.best.part);

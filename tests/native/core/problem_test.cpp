@@ -68,7 +68,8 @@ TEST(Problem, ValidProblemGetsDocumentedDefaults) {
   EXPECT_DOUBLE_EQ(p.material.youngs_modulus, 73.1e9);
   EXPECT_DOUBLE_EQ(p.manufacturing.bend_radius, 4 * 1.6e-3);                 // R = 4 t
   EXPECT_DOUBLE_EQ(p.manufacturing.min_flange, 4 * 1.6e-3 + 4 * 1.6e-3);     // 4 t + R
-  EXPECT_FALSE(p.manufacturing.press_brake_required);                       // "report"
+  EXPECT_TRUE(p.manufacturing.press_brake_required);                        // "prefer"
+  EXPECT_TRUE(p.manufacturing.press_brake_fallback);
   EXPECT_DOUBLE_EQ(p.requirements.safety_factor, 1.5);
   EXPECT_DOUBLE_EQ(p.requirements.compliance_limit(100.0), 100.0 * 1e-3);    // default 1 mm deflection
   EXPECT_EQ(p.search.chains, 10);
@@ -79,11 +80,12 @@ TEST(Problem, ValidProblemGetsDocumentedDefaults) {
 
 TEST(Problem, PressBrakeIsRequiredOnlyWhenAsked) {
   Files files;
-  for (const char* use : {"report", "require"}) {
+  for (const std::string use : {"report", "prefer", "require"}) {
     json j = valid_problem();
     j["manufacturing"]["press_brake"] = use;
-    const Problem p = load_problem(files.write(std::string("press_") + use + ".json", j.dump()));
-    EXPECT_EQ(p.manufacturing.press_brake_required, std::string(use) == "require") << use;
+    const Problem p = load_problem(files.write("press_" + use + ".json", j.dump()));
+    EXPECT_EQ(p.manufacturing.press_brake_required, use != "report") << use;
+    EXPECT_EQ(p.manufacturing.press_brake_fallback, use == "prefer") << use;
   }
 }
 
@@ -142,7 +144,7 @@ TEST(Problem, EveryBadInputGivesOneSentenceAndExitCodeOne) {
       {"wrong format", [](json& j, Files&) { j["format"] = "sheetgen-problem/9"; }, "format", "unsupported format"},
       {"unknown rivet mesh", [](json& j, Files&) { j["rivet_areas"][0]["mesh"] = "ceiling"; }, "rivet_areas[0].mesh", "no environment mesh is named 'ceiling'"},
       {"press-brake use", [](json& j, Files&) { j["manufacturing"]["press_brake"] = "always"; }, "manufacturing.press_brake",
-       "must be \"report\" or \"require\", got \"always\""},
+       "must be \"report\", \"prefer\" or \"require\", got \"always\""},
       {"no punches", [](json& j, Files&) { j["manufacturing"]["press_brake_tools"]["punches"] = json::array(); },
        "manufacturing.press_brake_tools.punches", "must list at least one punch"},
       {"punch kind", [](json& j, Files&) { j["manufacturing"]["press_brake_tools"]["punches"] = {{{"kind", "swan"}}}; },
