@@ -3,7 +3,9 @@
 // the pipeline: discovery and composition on the search mesh, then the final
 // check at the default mesh down the valid candidates, cheapest first. A load
 // without a valid part is searched again with web roots, then with flat
-// extensions; the answer is the valid one, else the one nearest to valid.
+// extensions, then with fresh seeds, and with "prefer" (the press-brake
+// setting) all of that once more without the press-brake check; the answer is
+// the valid one, else the one nearest to valid.
 #include <optional>
 
 #include "sheetgen/core/problem.hpp"
