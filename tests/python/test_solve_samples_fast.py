@@ -28,12 +28,13 @@ from sheetgen_tools.verify import VerifyOptions, verify_output
 # the eight). bulkhead_hole has a part only through the second search with
 # web roots (docs/discovery.md "Web roots"), which finds none at 4 x 300,
 # 6 x 300 (beam 4 or 8), 6 x 500 or 10 x 300: it keeps its own settings
-# (14 s). The bay at 6 x 500, beam 4, seed 3: 10/10 parts in 102 s wall
-# (132 s CPU) at 5e3e40f, against 402 s at 10 x 1000, beam 4, seed 3 (the
-# search there finds more segments, and composition tries them all); other
-# seeds and smaller searches have left one or two loads without a part.
+# (14 s). The bay keeps its own settings too (10 x 1000, beam 8, seed 1): with
+# the press-brake check in the search (docs/manufacturing.md "Press brake")
+# they give 10/10 parts in 167 s at 98ef9b6, while the reduced 6 x 500,
+# beam 4, seed 3 that gave 10/10 without it left data_recorder without a part
+# and took 201 s (its fallback passes) at cb462fe.
 REDUCED = {"chains": 6, "iterations": 300, "beam": 4}
-SETTINGS = {"bulkhead_hole": {}, "avionics_bay": {"chains": 6, "iterations": 500, "beam": 4, "seed": 3}}
+SETTINGS = {"bulkhead_hole": {}, "avionics_bay": {}}
 
 
 def settings(scene):
