@@ -43,41 +43,89 @@ bool in_compression(const std::vector<Eigen::Vector3d>& N, double threshold) {
   return largest > 0 && most_compressive < -threshold * largest;
 }
 
-}  // namespace
-
-BucklingResult analyse_buckling(ShellSolver& solver, const ShellModel& m, const ShellResult& ref,
-                                const ShellSolveOptions& solve_options, const BucklingOptions& options) {
+void check_reference(const ShellModel& m, const ShellResult& ref) {
   validate_shell_model(m);
   if (ref.displacements.size() != m.nodes.size())
     throw FemError("buckling reference", "holds " + std::to_string(ref.displacements.size()) +
                                              " nodal displacements for a model of " + std::to_string(m.nodes.size()) +
                                              " nodes (not a static result of this model)");
+}
+
+// B = -K_G of the resultants N, on the solver's factor of K (LDL^T backend:
+// the transform needs its D), assembled in the factor's DOF order.
+SparseMatrix prepare_pencil(ShellSolver& solver, const ShellModel& m, const std::vector<Eigen::Vector3d>& N,
+                            const ShellSolveOptions& solve_options) {
+  ShellSolveOptions ldlt = solve_options;
+  ldlt.backend = ShellSolverBackend::kEigenSimplicialLdlt;
+  ShellSolver::Impl& st = solver.state();
+  ShellResult timing;
+  st.prepare(m, ldlt, timing);
+  return assemble_elements(m, st.map, [&](int e) {
+    const auto& t = m.triangles[e];
+    return Matrix18d(-shell_geometric_stiffness({m.nodes[t[0]], m.nodes[t[1]], m.nodes[t[2]]}, N[e]));
+  });
+}
+
+LanczosOptions lanczos_options(const BucklingOptions& options) {
+  LanczosOptions lanczos;
+  lanczos.tolerance = options.tolerance;
+  lanczos.max_restarts = options.max_restarts;
+  return lanczos;
+}
+
+void take_modes(const PencilModes& modes, const DofMap& map, int n_nodes, BucklingResult& res) {
+  res.factors = modes.lambdas;
+  res.operations = modes.operations;
+  for (const Eigen::VectorXd& phi : modes.modes) res.mode_shapes.push_back(expand_unit_mode(map, phi, n_nodes));
+}
+
+double seconds_since(std::chrono::steady_clock::time_point t0) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+}
+
+}  // namespace
+
+BucklingResult analyse_buckling(ShellSolver& solver, const ShellModel& m, const ShellResult& ref,
+                                const ShellSolveOptions& solve_options, const BucklingOptions& options) {
+  check_reference(m, ref);
   const auto t0 = std::chrono::steady_clock::now();
   BucklingResult res;
   res.case_name = ref.case_name;
   const std::vector<Eigen::Vector3d> N = membrane_resultants(m, ref, solve_options.element);
   res.compressed = in_compression(N, options.compression_threshold);
   if (res.compressed) {
-    ShellSolveOptions ldlt = solve_options;
-    ldlt.backend = ShellSolverBackend::kEigenSimplicialLdlt;
-    ShellSolver::Impl& st = solver.state();
-    ShellResult timing;
-    st.prepare(m, ldlt, timing);
-    const SparseMatrix B = assemble_elements(m, st.map, [&](int e) {
-      const auto& t = m.triangles[e];
-      return Matrix18d(-shell_geometric_stiffness({m.nodes[t[0]], m.nodes[t[1]], m.nodes[t[2]]}, N[e]));
-    });
-    LanczosOptions lanczos;
-    lanczos.tolerance = options.tolerance;
-    lanczos.max_restarts = options.max_restarts;
-    const PencilModes modes = lowest_positive_modes(st.factor, B, options.modes, lanczos, "buckling");
-    res.factors = modes.lambdas;
-    res.operations = modes.operations;
-    for (const Eigen::VectorXd& phi : modes.modes)
-      res.mode_shapes.push_back(expand_unit_mode(st.map, phi, static_cast<int>(m.nodes.size())));
+    const SparseMatrix B = prepare_pencil(solver, m, N, solve_options);
+    const ShellSolver::Impl& st = solver.state();
+    take_modes(lowest_positive_modes(st.factor, B, options.modes, lanczos_options(options), "buckling"), st.map,
+               static_cast<int>(m.nodes.size()), res);
   }
-  res.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  res.seconds = seconds_since(t0);
   return res;
+}
+
+BucklingPair analyse_buckling_both_ways(ShellSolver& solver, const ShellModel& m, const ShellResult& ref,
+                                        const ShellSolveOptions& solve_options, const BucklingOptions& options) {
+  check_reference(m, ref);
+  const auto t0 = std::chrono::steady_clock::now();
+  BucklingPair out;
+  out.first.case_name = ref.case_name;
+  std::vector<Eigen::Vector3d> N = membrane_resultants(m, ref, solve_options.element);
+  out.first.compressed = in_compression(N, options.compression_threshold);
+  std::vector<Eigen::Vector3d> minus_N(N.size());
+  for (size_t e = 0; e < N.size(); ++e) minus_N[e] = -N[e];
+  out.second.compressed = in_compression(minus_N, options.compression_threshold);
+  if (out.first.compressed || out.second.compressed) {
+    const SparseMatrix B = prepare_pencil(solver, m, N, solve_options);
+    const ShellSolver::Impl& st = solver.state();
+    const int n_nodes = static_cast<int>(m.nodes.size());
+    const PencilBothSigns modes = lowest_modes_of_both_signs(st.factor, B, lanczos_options(options), "buckling");
+    // A side that compresses nothing cannot buckle (as analyse_buckling): its
+    // eigenvalue, if any, is not a buckling load.
+    if (out.first.compressed) take_modes(modes.positive, st.map, n_nodes, out.first);
+    if (out.second.compressed) take_modes(modes.negative, st.map, n_nodes, out.second);
+  }
+  out.first.seconds = out.second.seconds = seconds_since(t0);
+  return out;
 }
 
 }  // namespace sheetgen

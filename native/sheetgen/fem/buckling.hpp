@@ -41,4 +41,18 @@ struct BucklingResult {
 BucklingResult analyse_buckling(ShellSolver& solver, const ShellModel& model, const ShellResult& reference,
                                 const ShellSolveOptions& solve_options = {}, const BucklingOptions& options = {});
 
+// `reference` and the opposite load (-reference, the same magnitude) from one
+// Lanczos run over both ends of the pencil's spectrum: `first` is what
+// analyse_buckling(reference) gives, `second` what it gives for the negated
+// static result. Each holds at most one factor (options.modes is not used);
+// an envelope's opposite cases (left and right, forward and rearward, down and
+// up) scale `second` by the ratio of their magnitudes, since K_G is linear in
+// the load.
+struct BucklingPair {
+  BucklingResult first;
+  BucklingResult second;
+};
+BucklingPair analyse_buckling_both_ways(ShellSolver& solver, const ShellModel& model, const ShellResult& reference,
+                                        const ShellSolveOptions& solve_options = {}, const BucklingOptions& options = {});
+
 }  // namespace sheetgen

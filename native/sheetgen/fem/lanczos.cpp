@@ -31,7 +31,10 @@ LanczosResult largest_eigenpairs(int n, const std::function<void(const double*, 
   const int ncv = std::min(n, options.subspace > 0 ? options.subspace : std::max(2 * options.count + 1, 20));
   Spectra::SymEigsSolver<FunctionOp> eigs(op, options.count, std::max(ncv, options.count + 1));
   eigs.init();
-  eigs.compute(Spectra::SortRule::LargestAlge, options.max_restarts, options.tolerance, Spectra::SortRule::LargestAlge);
+  if (options.both_ends && options.count % 2 != 0)
+    throw FemError(what, "asks for both ends of the spectrum with an odd count " + std::to_string(options.count));
+  const Spectra::SortRule rule = options.both_ends ? Spectra::SortRule::BothEnds : Spectra::SortRule::LargestAlge;
+  eigs.compute(rule, options.max_restarts, options.tolerance, Spectra::SortRule::LargestAlge);
   if (eigs.info() != Spectra::CompInfo::Successful)
     throw FemError(what, "the Lanczos iteration did not converge in " + std::to_string(options.max_restarts) +
                              " restarts (" + std::to_string(eigs.num_operations()) + " operator products)");

@@ -12,10 +12,15 @@ struct LanczosOptions {
   int subspace = 0;          // Lanczos vectors; <= 0: max(2 count + 1, 20), at most n
   double tolerance = 1e-9;   // relative residual of each Ritz value
   int max_restarts = 500;
+  // Both ends of the spectrum: count / 2 of the largest and count / 2 of the
+  // smallest algebraic eigenvalues (count even). One pencil of a buckling
+  // case then answers for the case and its opposite (docs/fem.md
+  // "Envelope analysis").
+  bool both_ends = false;
 };
 
 struct LanczosResult {
-  Eigen::VectorXd values;   // the `count` largest algebraic eigenvalues, descending
+  Eigen::VectorXd values;   // the `count` largest algebraic eigenvalues (or both ends), descending
   Eigen::MatrixXd vectors;  // n x count, unit columns
   int operations = 0;       // operator applications
 };

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <functional>
 
 namespace sheetgen {
 
@@ -14,27 +15,59 @@ std::vector<Vector6d> expand_unit_mode(const DofMap& map, const Eigen::VectorXd&
   return u;
 }
 
-PencilModes lowest_positive_modes(const StiffnessFactor& factor, const SparseMatrix& B_lower, int count,
-                                  LanczosOptions options, const char* what) {
+namespace {
+
+// The operator S x = W^-1 B W^-T x of the shift-invert transform.
+std::function<void(const double*, double*)> transformed_operator(const StiffnessFactor& factor,
+                                                                 const SparseMatrix& B_lower) {
   const int n = static_cast<int>(B_lower.rows());
-  auto apply = [&](const double* x, double* y) {
+  return [&factor, &B_lower, n](const double* x, double* y) {
     const Eigen::VectorXd v = factor.half_solve_transpose(Eigen::Map<const Eigen::VectorXd>(x, n));
     Eigen::Map<Eigen::VectorXd>(y, n) = factor.half_solve(symmetric_product(B_lower, v));
   };
+}
+
+// mu at round-off level (|mu| below 1e-12 of the largest) is no mode: a
+// lambda of 1e12 times the first is not a physical load or frequency.
+double round_off_floor(const LanczosResult& eig) { return 1e-12 * eig.values.cwiseAbs().maxCoeff(); }
+
+// Appends lambda = 1 / |mu| and phi = W^-T psi scaled to |phi^T B phi| = 1
+// (psi is unit, so phi^T B phi = psi^T S psi = mu).
+void append_mode(const StiffnessFactor& factor, const Eigen::VectorXd& psi, double mu, PencilModes& out) {
+  out.lambdas.push_back(1.0 / std::abs(mu));
+  out.modes.push_back(factor.half_solve_transpose(psi) / std::sqrt(std::abs(mu)));
+}
+
+}  // namespace
+
+PencilModes lowest_positive_modes(const StiffnessFactor& factor, const SparseMatrix& B_lower, int count,
+                                  LanczosOptions options, const char* what) {
+  const int n = static_cast<int>(B_lower.rows());
   options.count = std::min(count, n - 1);
-  const LanczosResult eig = largest_eigenpairs(n, apply, options, what);
+  const LanczosResult eig = largest_eigenpairs(n, transformed_operator(factor, B_lower), options, what);
   PencilModes out;
   out.operations = eig.operations;
-  // mu at round-off level (|mu| below 1e-12 of the largest) is no mode: a
-  // lambda of 1e12 times the first is not a physical load or frequency.
-  const double floor = 1e-12 * eig.values.cwiseAbs().maxCoeff();
+  const double floor = round_off_floor(eig);
   for (int k = 0; k < eig.values.size(); ++k) {
     const double mu = eig.values(k);
     if (!(mu > floor)) break;  // descending: the rest are not positive either
-    out.lambdas.push_back(1.0 / mu);
-    // psi is unit, so phi^T B phi = psi^T S psi = mu; scale phi to 1.
-    out.modes.push_back(factor.half_solve_transpose(eig.vectors.col(k)) / std::sqrt(mu));
+    append_mode(factor, eig.vectors.col(k), mu, out);
   }
+  return out;
+}
+
+PencilBothSigns lowest_modes_of_both_signs(const StiffnessFactor& factor, const SparseMatrix& B_lower,
+                                           LanczosOptions options, const char* what) {
+  const int n = static_cast<int>(B_lower.rows());
+  options.count = 2;
+  options.both_ends = true;
+  const LanczosResult eig = largest_eigenpairs(n, transformed_operator(factor, B_lower), options, what);
+  PencilBothSigns out;
+  out.positive.operations = out.negative.operations = eig.operations;
+  const double floor = round_off_floor(eig);
+  const int last = static_cast<int>(eig.values.size()) - 1;  // descending: 0 the largest mu, last the smallest
+  if (eig.values(0) > floor) append_mode(factor, eig.vectors.col(0), eig.values(0), out.positive);
+  if (eig.values(last) < -floor) append_mode(factor, eig.vectors.col(last), eig.values(last), out.negative);
   return out;
 }
 

@@ -28,4 +28,16 @@ std::vector<Vector6d> expand_unit_mode(const DofMap& map, const Eigen::VectorXd&
 PencilModes lowest_positive_modes(const StiffnessFactor& factor, const SparseMatrix& B_lower, int count,
                                   LanczosOptions options, const char* what);
 
+// The eigenvalue of smallest magnitude of each sign, from one Lanczos run over
+// both ends of S's spectrum: `positive` holds the lowest lambda > 0, and
+// `negative` the |lambda| of the lambda < 0 nearest zero, which is the lowest
+// positive eigenvalue of the pencil with -B (buckling: the opposite load).
+// Either holds nothing when the pencil has no eigenvalue of that sign.
+struct PencilBothSigns {
+  PencilModes positive;
+  PencilModes negative;
+};
+PencilBothSigns lowest_modes_of_both_signs(const StiffnessFactor& factor, const SparseMatrix& B_lower,
+                                           LanczosOptions options, const char* what);
+
 }  // namespace sheetgen

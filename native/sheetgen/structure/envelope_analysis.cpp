@@ -46,21 +46,63 @@ void find_governing_cases(EnvelopeResult& res) {
   }
 }
 
+// alpha > 0 when case b's loads are -alpha times case a's (same nodes, forces
+// and moments to 1e-12 of a's largest), else 0: the envelope's opposite
+// factors (left and right 3 g; forward 9 g and rearward 1.5 g; down 6 g and
+// up 3 g) are such pairs, since their forces act at one centre of mass.
+double opposite_ratio(const ShellLoadCase& a, const ShellLoadCase& b) {
+  if (a.loads.size() != b.loads.size() || a.loads.empty()) return 0;
+  double na = 0, nb = 0;
+  for (size_t i = 0; i < a.loads.size(); ++i) {
+    if (a.loads[i].node != b.loads[i].node) return 0;
+    na = std::max({na, a.loads[i].force.norm(), a.loads[i].moment.norm()});
+    nb = std::max({nb, b.loads[i].force.norm(), b.loads[i].moment.norm()});
+  }
+  if (na <= 0 || nb <= 0) return 0;
+  const double alpha = nb / na;
+  for (size_t i = 0; i < a.loads.size(); ++i)
+    if ((b.loads[i].force + alpha * a.loads[i].force).norm() > 1e-12 * nb ||
+        (b.loads[i].moment + alpha * a.loads[i].moment).norm() > 1e-12 * nb)
+      return 0;
+  return alpha;
+}
+
+void record_buckling(const BucklingResult& b, double scale, size_t k, const EnvelopeOptions& options,
+                     std::vector<std::vector<Vector6d>>& modes, EnvelopeResult& res) {
+  res.cases[k].buckling_checked = true;
+  res.cases[k].buckling_factor = b.factor() * scale;
+  if (res.cases[k].buckling_factor < res.buckling_factor) {
+    res.buckling_factor = res.cases[k].buckling_factor;
+    res.governing_buckling = static_cast<int>(k);
+  }
+  if (options.keep_mode_shapes && !b.mode_shapes.empty()) modes[k] = b.mode_shapes.front();
+}
+
 // The buckling factor of every case (each solve skips a case that compresses
-// nothing), the governing one, and its mode when kept.
-void buckle_every_case(const ShellModel& m, const std::vector<ShellResult>& statics, const ShellSolveOptions& so,
+// nothing), the governing one, and its mode when kept. A case and its
+// opposite share one eigen solve (analyse_buckling_both_ways): K_G is linear
+// in the load, so the opposite case's factor is the negated load's over the
+// ratio of their magnitudes.
+void buckle_every_case(const ShellModel& m, const std::vector<ShellLoadCase>& cases,
+                       const std::vector<ShellResult>& statics, const ShellSolveOptions& so,
                        const EnvelopeOptions& options, ShellSolver& solver, EnvelopeResult& res) {
   const auto t0 = Clock::now();
   std::vector<std::vector<Vector6d>> modes(statics.size());
+  std::vector<bool> done(statics.size(), false);
   for (size_t k = 0; k < statics.size(); ++k) {
-    const BucklingResult b = analyse_buckling(solver, m, statics[k], so);
-    res.cases[k].buckling_checked = true;
-    res.cases[k].buckling_factor = b.factor();
-    if (b.factor() < res.buckling_factor) {
-      res.buckling_factor = b.factor();
-      res.governing_buckling = static_cast<int>(k);
+    if (done[k]) continue;
+    size_t partner = k;
+    double alpha = 0;
+    for (size_t j = k + 1; j < statics.size() && alpha <= 0; ++j)
+      if (!done[j] && (alpha = opposite_ratio(cases[k], cases[j])) > 0) partner = j;
+    if (partner == k) {
+      record_buckling(analyse_buckling(solver, m, statics[k], so), 1.0, k, options, modes, res);
+    } else {
+      const BucklingPair pair = analyse_buckling_both_ways(solver, m, statics[k], so);
+      record_buckling(pair.first, 1.0, k, options, modes, res);
+      record_buckling(pair.second, 1.0 / alpha, partner, options, modes, res);
+      done[partner] = true;
     }
-    if (options.keep_mode_shapes && !b.mode_shapes.empty()) modes[k] = b.mode_shapes.front();
   }
   if (options.keep_mode_shapes && res.governing_buckling >= 0) res.buckling_mode = modes[res.governing_buckling];
   res.buckling_seconds = seconds_since(t0);
@@ -120,7 +162,7 @@ EnvelopeResult analyse_envelope(const Problem& problem, const PartModel& part, c
     return res;
   }
   res.eigen_checked = options.buckling || options.frequencies > 0;
-  if (options.buckling) buckle_every_case(m, statics, so, options, solver, res);
+  if (options.buckling) buckle_every_case(m, cases, statics, so, options, solver, res);
   if (options.frequencies > 0) vibrate(m, so, options, solver, res);
   judge_eigen_checks(problem.requirements, options, res);
   res.seconds = seconds_since(start);
