@@ -1,7 +1,8 @@
 #!/usr/bin/python3
 """The fast tier's end-to-end check: every scene in sample_scenes/ (each single
 scene and the avionics bay, listed from the folder) solves at reduced
-settings (SETTINGS below) with a valid part for every load (exit 0), and
+settings (SETTINGS below) with a valid part for every load (exit 0; the two
+scenes of WITHOUT_PART_UNDER_ENVELOPE may end without one, with a reason), and
 every part passes the checks of sheetgen_tools.verify that need no CalculiX:
 brute-force clearance (to the environment, the load boxes and the parts before
 it), flanges flush on their rivet areas, the ezdxf outline of the flat pattern
@@ -12,29 +13,39 @@ Run: PYTHONPATH=tools /usr/bin/python3 tests/python/test_solve_samples_fast.py -
 """
 import argparse
 import concurrent.futures
+import json
 import os
 import sys
+import tempfile
 import time
 import traceback
 
-from sheetgen_tools import paths, runner
+from sheetgen_tools import paths, problem, runner
 from sheetgen_tools.verify import VerifyOptions, verify_output
 
 # The settings of this test per scene, as runner.SolveOptions fields; the
 # scenes' own are 10 chains x 1000 iterations, beam 8, seed 1. Measured on the
-# shared 2-core machine (--threads 2): the composition's FEM, not the chains,
-# is most of a solve, so the beam saves the most. At 6 x 300, beam 4 every
-# single scene but bulkhead_hole has a valid part, in 3-13 s each (59 s for
-# the eight). bulkhead_hole has a part only through the second search with
-# web roots (docs/discovery.md "Web roots"), which finds none at 4 x 300,
-# 6 x 300 (beam 4 or 8), 6 x 500 or 10 x 300: it keeps its own settings
-# (14 s). The bay keeps its own settings too (10 x 1000, beam 8, seed 1): with
-# the press-brake check in the search (docs/manufacturing.md "Press brake")
-# they give 10/10 parts in 167 s at 98ef9b6, while the reduced 6 x 500,
-# beam 4, seed 3 that gave 10/10 without it left data_recorder without a part
-# and took 201 s (its fallback passes) at cb462fe.
+# shared 2-core machine (--threads 2) under the envelope at 8ca8d3b: at 6 x
+# 300, beam 4, shelf, corner, wall_standoff, corner_obstacle, slanted and
+# sharp_angles have a valid part in 5-30 s each; maze has none (its own
+# settings find one, 77 s) and bulkhead_hole finds none at either (28 s at its
+# own). The bay keeps its own settings (below, in its one downward case).
 REDUCED = {"chains": 6, "iterations": 300, "beam": 4}
-SETTINGS = {"bulkhead_hole": {}, "avionics_bay": {}}
+# Scenes drawn for one 9 g downward case that have no part under the FAR
+# 25.561 envelope today (docs/scenes.md "Under the envelope"): a box carried
+# through a slot or a hole on webs, which the sideways 3 g cases bend across
+# their thickness (the nearest candidates are 1.7 and 28 mm off against the
+# 1 mm limit at the default settings). Their run must finish (exit 2: no valid
+# part) with a reason that names the failing check's case; a part they do
+# find is verified like any other.
+WITHOUT_PART_UNDER_ENVELOPE = {"boxed_in", "bulkhead_hole"}
+# The bay is solved here in its one 9 g downward case (sheetgen_tools.problem
+# .single_force): under its envelope it takes 407 s at its own settings (10/10
+# parts; docs/scenes.md), more than this tier's budget, and the reduced
+# settings leave two loads without a part. The envelope bay is the full
+# tier's (test_solve_samples.py).
+SINGLE_FORCE = {"avionics_bay"}
+SETTINGS = {"bulkhead_hole": {}, "maze": {}, "avionics_bay": {}}
 
 
 def settings(scene):
@@ -52,9 +63,22 @@ def verify(scene, out_dir):
     return ok, text, time.monotonic() - t0
 
 
-def solve(scene, sheetgen):
+def problem_file(scene, scratch):
+    """The scene's problem.json, or for SINGLE_FORCE its one-force copy written into scratch."""
+    path = paths.scene_problem(scene)
+    if scene not in SINGLE_FORCE:
+        return path
+    with open(path) as f:
+        doc = problem.single_force(json.load(f), os.path.dirname(path))
+    copy = os.path.join(scratch, scene + "_single_force.json")
+    with open(copy, "w") as f:
+        json.dump(doc, f)
+    return copy
+
+
+def solve(scene, sheetgen, scratch):
     """Solves one scene at its settings of this test: (exit 0, SolveRun, the line to print)."""
-    solved = runner.solve(paths.scene_problem(scene), options=runner.SolveOptions(
+    solved = runner.solve(problem_file(scene, scratch), options=runner.SolveOptions(
         threads=2, sheetgen=sheetgen, **settings(scene)))
     used = solved.result["search"] if solved.result else {}
     line = (f"== {scene}: {used.get('chains')} x {used.get('iterations')}, beam {used.get('beam_width')}, "
@@ -62,7 +86,11 @@ def solve(scene, sheetgen):
             f"{sum(p['status'] == 'ok' for p in solved.parts)}/{len(solved.parts)} loads with a part, "
             f"{sum(p.get('area_m2', 0.0) for p in solved.parts if p['status'] == 'ok') * 1e4:.0f} cm², "
             f"solve {solved.wall_s:.1f} s (CPU {solved.cpu_s:.1f} s)")
-    return solved.exit_code == 0, solved, line
+    if solved.exit_code == 0:
+        return True, solved, line
+    known = scene in WITHOUT_PART_UNDER_ENVELOPE and solved.exit_code == 2 and solved.result is not None and all(
+        p["status"] == "ok" or "in case '" in p.get("reason", "") for p in solved.parts)
+    return known, solved, line + (" (no part under the envelope, as documented)" if known else "")
 
 
 def main():
@@ -75,15 +103,16 @@ def main():
     failed, pending = [], []
     # One scene solves at a time on 2 threads; the previous scene's check (one
     # thread, numpy) runs beside it in a worker process.
-    with concurrent.futures.ProcessPoolExecutor(max_workers=1) as pool:
+    with concurrent.futures.ProcessPoolExecutor(max_workers=1) as pool, tempfile.TemporaryDirectory() as scratch:
         for scene in args.scenes:
-            ok, solved, line = solve(scene, sheetgen)
+            ok, solved, line = solve(scene, sheetgen, scratch)
             print(line, flush=True)
             if not ok:
                 print(solved.stdout + solved.stderr, flush=True)
                 failed.append(scene)
                 continue
-            pending.append((scene, pool.submit(verify, scene, solved.out_dir)))
+            if any(p["status"] == "ok" for p in solved.parts):
+                pending.append((scene, pool.submit(verify, scene, solved.out_dir)))
         for scene, future in pending:
             ok, text, seconds = future.result()
             print(f"== {scene}: verified in {seconds:.1f} s\n{text}", flush=True)

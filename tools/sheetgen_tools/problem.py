@@ -199,3 +199,25 @@ def with_envelope(doc, problem_dir, mass, forward=(1.0, 0.0, 0.0), up=(0.0, 0.0,
         load["mass"] = mass
     q["load_cases"] = {"forward": list(forward), "up": list(up), "factors": factors}
     return q
+
+
+def single_force(doc, problem_dir):
+    """A copy of a problem document (read from problem_dir; its file meshes made
+    absolute) whose every box of mass m carries one force, m * 9 * 9.81 N
+    downward: the one case the sample scenes had before their envelopes
+    (docs/scenes.md), without the envelope or the buckling and frequency
+    floors. A load without a mass keeps its own force."""
+    q = with_absolute_files(doc, problem_dir)
+    for load in q["loads"]:
+        if "mass" not in load:
+            continue
+        mass = load.pop("mass")
+        for key in ("cases", "center_of_mass", "inertia"):
+            load.pop(key, None)
+        load["force"] = [0.0, 0.0, -round(mass * 9.0 * 9.81, 3)]
+        load["moment"] = [0.0, 0.0, 0.0]
+    q.pop("load_cases", None)
+    for key in ("min_buckling_factor", "min_frequency_hz"):
+        q.get("requirements", {}).pop(key, None)
+    return q
+

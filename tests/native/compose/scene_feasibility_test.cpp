@@ -15,6 +15,7 @@
 #include "sheetgen/env/environment.hpp"
 #include "sheetgen/part/realisation.hpp"
 #include "sheetgen/part/validity.hpp"
+#include "../common/single_force.hpp"
 
 namespace sheetgen {
 namespace {
@@ -68,7 +69,11 @@ Candidate evaluate(const Problem& p, const Environment& env, const Part& part) {
 }
 
 void expect_feasible(const std::string& scene, const WebDesign& d, double max_ratio_with_lips) {
-  Problem p = load_problem(std::string(SHEETGEN_SOURCE_DIR) + "/sample_scenes/" + scene + "/problem.json");
+  // The hand-built webs answer the one 9 g downward case the scenes were
+  // drawn for (docs/scenes.md "boxed_in and bulkhead_hole"); under the
+  // envelope's sideways cases they are far too soft (docs/scenes.md).
+  Problem p = test::single_force(
+      load_problem(std::string(SHEETGEN_SOURCE_DIR) + "/sample_scenes/" + scene + "/problem.json"));
   // The question here is structural: is there a part stiff enough? These
   // webs are hats whose legs meet the ram of the standard press brake
   // (docs/manufacturing.md "Press brake"), so the press-brake check is off.

@@ -22,6 +22,12 @@
 namespace sheetgen {
 namespace {
 
+// The corner scene as written before the scenes had load envelopes (one 9 g
+// downward force), its meshes the scene's.
+fs::path old_corner_file() {
+  return fs::path(SHEETGEN_SOURCE_DIR) / "tests/native/core/data/corner_single_force.json";
+}
+
 namespace fs = std::filesystem;
 using nlohmann::json;
 
@@ -233,26 +239,21 @@ TEST(LoadCases, OldSingleForceFileReadsAsBefore) {
   EXPECT_FALSE(p.requirements.min_frequency_hz);
   EXPECT_DOUBLE_EQ(p.requirements.compliance_limit(box.cases[0]), p.requirements.compliance_limit(box.force.norm()));
 
-  // The sample scenes are such files: each load's force is the file's. (Once
-  // every scene has an envelope, point this at a saved old file instead.)
-  int old_scenes = 0;
-  for (const auto& entry : fs::directory_iterator(fs::path(SHEETGEN_SOURCE_DIR) / "sample_scenes")) {
-    const fs::path file = entry.path() / "problem.json";
-    if (!fs::exists(file)) continue;
-    const json raw = json::parse(std::ifstream(file));
-    if (raw.contains("load_cases")) continue;  // a scene already given an envelope is not an old file
-    const Problem scene = load_problem(file.string());
-    ++old_scenes;
-    for (size_t i = 0; i < scene.loads.size(); ++i) {
-      const Load& l = scene.loads[i];
-      const json& rl = raw["loads"][i];
-      expect_vec(l.force, Vec3(rl["force"][0].get<double>(), rl["force"][1].get<double>(), rl["force"][2].get<double>()), 0, file.string() + " force");
-      ASSERT_EQ(l.cases.size(), 1u) << file;
-      expect_vec(l.cases[0].force, l.force, 0, file.string());
-      expect_vec(l.center_of_mass, l.center, 0, file.string());
-    }
-  }
-  EXPECT_GT(old_scenes, 0) << "no sample scene without load_cases was read";
+  // A saved old file (the corner scene as it was written before the scenes
+  // had envelopes): each load's force is the file's, one case, centre of mass
+  // at the box's centre.
+  const fs::path file = old_corner_file();
+  const json raw = json::parse(std::ifstream(file));
+  const Problem scene = load_problem(file.string());
+  ASSERT_EQ(scene.loads.size(), 1u);
+  const Load& l = scene.loads[0];
+  const json& rl = raw["loads"][0];
+  expect_vec(l.force, Vec3(rl["force"][0].get<double>(), rl["force"][1].get<double>(), rl["force"][2].get<double>()), 0,
+             "old corner force");
+  ASSERT_EQ(l.cases.size(), 1u);
+  expect_vec(l.cases[0].force, l.force, 0, "old corner case");
+  expect_vec(l.center_of_mass, l.center, 0, "old corner centre of mass");
+  EXPECT_FALSE(scene.requirements.eigen_checks);
 }
 
 // `sheetgen check` lists every case with its force (%.4g of m g0 * 9 = 220.6 N).
@@ -269,7 +270,7 @@ TEST(LoadCases, CheckPrintsTheCases) {
 // An old one-force file names no floor: `check` says buckling and frequency
 // are not checked rather than print a floor the search does not apply.
 TEST(LoadCases, CheckSaysAnOldFileHasNoEigenChecks) {
-  const auto [code, out] = run_check((fs::path(SHEETGEN_SOURCE_DIR) / "sample_scenes/corner/problem.json").string(), false);
+  const auto [code, out] = run_check(old_corner_file().string(), false);
   EXPECT_EQ(code, 0) << out;
   EXPECT_NE(out.find("buckling and frequency not checked"), std::string::npos) << out;
   EXPECT_EQ(out.find("min buckling factor"), std::string::npos) << out;

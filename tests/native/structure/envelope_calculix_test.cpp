@@ -21,6 +21,7 @@
 #include "sheetgen/core/load_cases.hpp"
 #include "sheetgen/fem/ccx_export.hpp"
 #include "sheetgen/structure/envelope_analysis.hpp"
+#include "../common/single_force.hpp"
 
 namespace sheetgen {
 namespace {
@@ -34,10 +35,12 @@ std::string read_fixture(const std::string& name) {
   return text.str();
 }
 
-// The scene's problem with load `load` given the mass its design force stands
-// for and the FAR 25.561 envelope after its design case (x forward, z up).
+// The scene's problem with load `load` given the mass its design force (9 g
+// down) stands for and the FAR 25.561 envelope after its design case (x
+// forward, z up): the case set the CalculiX references were measured on.
 Problem envelope_problem(const std::string& scene, const std::string& load, int& index) {
-  Problem p = load_problem(std::string(SHEETGEN_SOURCE_DIR) + "/sample_scenes/" + scene + "/problem.json");
+  Problem p =
+      test::single_force(load_problem(std::string(SHEETGEN_SOURCE_DIR) + "/sample_scenes/" + scene + "/problem.json"));
   index = -1;
   for (size_t i = 0; i < p.loads.size(); ++i)
     if (p.loads[i].name == load) index = static_cast<int>(i);
