@@ -38,12 +38,15 @@ CORNER_MAX_DEFLECTION = 3e-3
 
 def corner_envelope_problem(folder):
     """The corner scene with its box as CORNER_MASS kg under the FAR 25.561 preset
-    (forward +x, up +z) and max_deflection CORNER_MAX_DEFLECTION, written to
+    (forward +x, up +z), max_deflection CORNER_MAX_DEFLECTION and no frequency floor, written to
     folder/problem.json; returns its path."""
     with open(paths.scene_problem("corner")) as f:
         doc = json.load(f)
     q = problem.with_envelope(doc, os.path.dirname(paths.scene_problem("corner")), CORNER_MASS)
     q.setdefault("requirements", {})["max_deflection"] = CORNER_MAX_DEFLECTION
+    # No frequency floor: a part 3 mm soft has its first mode below the
+    # scene's 30 Hz, and the deck's statics and masses are what is tested.
+    q["requirements"].pop("min_frequency_hz", None)
     path = os.path.join(folder, "problem.json")
     with open(path, "w") as f:
         json.dump(q, f, indent=1)

@@ -47,7 +47,8 @@ def envelope_problem(scene, load_name, folder):
     (forward +x, up +z) beside that force; written to folder/problem.json."""
     path = paths.scene_problem(scene)
     with open(path) as f:
-        doc = problem.with_absolute_files(json.load(f), os.path.dirname(path))
+        # The scene in its one 9 g downward case (the references' case set: design + envelope).
+        doc = problem.single_force(json.load(f), os.path.dirname(path))
     load = next(l for l in doc["loads"] if l["name"] == load_name)
     force = load["force"]
     load["mass"] = (force[0] ** 2 + force[1] ** 2 + force[2] ** 2) ** 0.5 / (9 * G)
