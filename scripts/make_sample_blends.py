@@ -3,8 +3,8 @@
     blender -b --factory-startup --python-exit-code 1 --python scripts/make_sample_blends.py [-- SCENE ...]
 
 Each scene is the problem JSON imported with the add-on's Import operator into
-an empty file (rivet areas tagged and coloured, load boxes with force arrows,
-settings), the viewport set to show the rivet-area colours. Open one, press
+an empty file (rivet areas tagged and coloured, load boxes with their masses,
+the envelope and the other settings), the viewport set to show the rivet-area colours. Open one, press
 Generate in the Sheet Metal tab.
 """
 import os
