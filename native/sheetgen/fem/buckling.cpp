@@ -33,14 +33,23 @@ std::pair<double, double> principal(const Eigen::Vector3d& n) {
   return {c - r, c + r};
 }
 
-bool in_compression(const std::vector<Eigen::Vector3d>& N, double threshold) {
-  double largest = 0, most_compressive = 0;
+// Whether the field N, and the opposite field -N, compress part of the sheet:
+// some element's smaller principal resultant below -threshold times the
+// largest principal magnitude (for -N the smaller principal is -hi).
+struct Compression {
+  bool under_load = false;
+  bool under_opposite = false;
+};
+Compression compression(const std::vector<Eigen::Vector3d>& N, double threshold) {
+  double largest = 0, lowest = 0, highest = 0;
   for (const auto& n : N) {
     const auto [lo, hi] = principal(n);
     largest = std::max({largest, std::abs(lo), std::abs(hi)});
-    most_compressive = std::min(most_compressive, lo);
+    lowest = std::min(lowest, lo);
+    highest = std::max(highest, hi);
   }
-  return largest > 0 && most_compressive < -threshold * largest;
+  if (!(largest > 0)) return {};
+  return {lowest < -threshold * largest, highest > threshold * largest};
 }
 
 void check_reference(const ShellModel& m, const ShellResult& ref) {
@@ -92,7 +101,7 @@ BucklingResult analyse_buckling(ShellSolver& solver, const ShellModel& m, const 
   BucklingResult res;
   res.case_name = ref.case_name;
   const std::vector<Eigen::Vector3d> N = membrane_resultants(m, ref, solve_options.element);
-  res.compressed = in_compression(N, options.compression_threshold);
+  res.compressed = compression(N, options.compression_threshold).under_load;
   if (res.compressed) {
     const SparseMatrix B = prepare_pencil(solver, m, N, solve_options);
     const ShellSolver::Impl& st = solver.state();
@@ -109,11 +118,10 @@ BucklingPair analyse_buckling_both_ways(ShellSolver& solver, const ShellModel& m
   const auto t0 = std::chrono::steady_clock::now();
   BucklingPair out;
   out.first.case_name = ref.case_name;
-  std::vector<Eigen::Vector3d> N = membrane_resultants(m, ref, solve_options.element);
-  out.first.compressed = in_compression(N, options.compression_threshold);
-  std::vector<Eigen::Vector3d> minus_N(N.size());
-  for (size_t e = 0; e < N.size(); ++e) minus_N[e] = -N[e];
-  out.second.compressed = in_compression(minus_N, options.compression_threshold);
+  const std::vector<Eigen::Vector3d> N = membrane_resultants(m, ref, solve_options.element);
+  const Compression c = compression(N, options.compression_threshold);
+  out.first.compressed = c.under_load;
+  out.second.compressed = c.under_opposite;
   if (out.first.compressed || out.second.compressed) {
     const SparseMatrix B = prepare_pencil(solver, m, N, solve_options);
     const ShellSolver::Impl& st = solver.state();
