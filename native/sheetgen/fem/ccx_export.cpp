@@ -258,6 +258,28 @@ std::vector<std::vector<int>> deck_elements(const ShellModel& m, const ModelHold
   return elements;
 }
 
+// Quadratic shells (S6, S8R) get each element's own flat normal at every node
+// (*NORMAL). Otherwise ccx averages, per node, the normals of the elements
+// within 20 deg of each other and offsets the expanded solid's faces by t/2
+// along that average. Our bend facets are just under 20 deg, so at a fold the
+// faces move sideways by up to t/2 tan(10 deg) = 0.14 mm at t = 1.6 mm, more
+// than the small quads split from a triangle there are wide, and ccx stops on
+// a nonpositive jacobian. Given normals are grouped only within 0.5 deg, so
+// ccx expands each side of a fold on its own and ties the two rigidly, which
+// is how our flat elements meet there too.
+// Per triangle of the model: elements k (S6) or 3k..3k+2 (S8R, the split).
+void write_facet_normals(const ShellModel& m, const std::vector<std::vector<int>>& elements, const std::string& type,
+                         std::ostream& out) {
+  if (type != "S6" && type != "S8R") return;
+  const size_t per_triangle = type == "S6" ? 1 : 3;
+  out << "*NORMAL\n";
+  for (size_t k = 0; k < elements.size(); ++k) {
+    const auto& t = m.triangles[k / per_triangle];
+    const Vec3 n = (m.nodes[t[1]] - m.nodes[t[0]]).cross(m.nodes[t[2]] - m.nodes[t[0]]).normalized();
+    for (int id : elements[k]) out << k + 1 << ", " << id << ", " << n.x() << ", " << n.y() << ", " << n.z() << "\n";
+  }
+}
+
 // Rigid-link reference and rotation nodes.
 void write_link_nodes(const ShellModel& m, const ModelHolds& h, Deck& d) {
   for (const RigidLink& l : m.rigid_links) {
@@ -315,6 +337,7 @@ void write_elements(const ShellModel& m, const ModelHolds& h, const std::vector<
     out << "\n";
   }
   d.map.element_count = eid;
+  write_facet_normals(m, elements, element_type, out);
   out << "*MATERIAL, NAME=SHEET\n*ELASTIC\n"
       << m.material.youngs_modulus << ", " << m.material.poisson_ratio << "\n";
   if (std::isfinite(m.material.density) && m.material.density > 0)

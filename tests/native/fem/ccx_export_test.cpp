@@ -175,5 +175,80 @@ TEST(CcxExport, S8rAndS4CalculixDecksOfTheThreeTabBracketAgreeWithOurs) {
   std::filesystem::remove_all(dir);
 }
 
+// A strip (60 x 20 mm, t = 1.6 mm, nu = 0) folded 19 deg at 30 mm along its
+// length (ccx averages the normals of elements within 20 deg, like our bend
+// facets), 2.5 x 5 mm cells with a column of 0.2 mm cells either side of the
+// fold: the size of the triangles the mesher leaves where a bend relief meets
+// a bend facet. Clamped at s = 0, P = 1 N along z across the tip. Built by
+// hand so the small cells are exactly there.
+constexpr double kFoldDeg = 19, kLegMm = 30, kStripWidthMm = 20;
+
+ShellModel folded_strip_with_fine_cells_at_the_fold() {
+  std::vector<double> s_mm;
+  for (double s = 0; s < kLegMm - 1; s += 2.5) s_mm.push_back(s);
+  for (double s : {kLegMm - 0.2, kLegMm, kLegMm + 0.2}) s_mm.push_back(s);
+  for (double s = kLegMm + 2.5; s < 2 * kLegMm + 1e-9; s += 2.5) s_mm.push_back(s);
+  const std::vector<double> y_mm = {0, 5, 10, 15, kStripWidthMm};
+  const double fold = kFoldDeg * M_PI / 180.0;
+  ShellModel m;
+  m.material = test::bracket_material(0.0);
+  for (double s : s_mm)
+    for (double y : y_mm) {
+      const double a = std::max(0.0, s - kLegMm);
+      m.add_node(1e-3 * Vec3(std::min(s, kLegMm) + a * std::cos(fold), y, a * std::sin(fold)));
+    }
+  const int ny = static_cast<int>(y_mm.size());
+  for (int i = 0; i + 1 < static_cast<int>(s_mm.size()); ++i)
+    for (int j = 0; j + 1 < ny; ++j) {
+      const int a = i * ny + j, b = (i + 1) * ny + j;
+      m.triangles.push_back({a, b, b + 1});
+      m.triangles.push_back({a, b + 1, a + 1});
+    }
+  for (int j = 0; j < ny; ++j) m.clamp(j);
+  const int tip = (static_cast<int>(s_mm.size()) - 1) * ny;
+  for (int j = 0; j < ny; ++j) m.add_load(tip + j, Vec3(0, 0, (j == 0 || j + 1 == ny ? 0.5 : 1.0) / (ny - 1)));
+  m.load_node = tip + ny / 2;
+  return m;
+}
+
+// Beam theory (nu = 0, so the strip is a beam; shear adds 0.05 %): with X the
+// tip's distance from the clamp along x, the moment is P (X - s) on the first
+// leg and P (L - a) cos(fold) on the second, which also carries N = P sin(fold):
+// C = [ (X^3 - (X - L)^3) / 3 + cos^2 L^3 / 3 ] P^2 / EI + sin^2 L P^2 / EA.
+double folded_strip_compliance(const Material& mat) {
+  const double L = kLegMm * 1e-3, b = kStripWidthMm * 1e-3, t = mat.thickness, fold = kFoldDeg * M_PI / 180.0;
+  const double X = L + L * std::cos(fold);
+  const double EI = mat.youngs_modulus * b * t * t * t / 12, EA = mat.youngs_modulus * b * t;
+  const double bending = (std::pow(X, 3) - std::pow(X - L, 3)) / 3 + std::pow(std::cos(fold), 2) * std::pow(L, 3) / 3;
+  return bending / EI + std::pow(std::sin(fold), 2) * L / EA;
+}
+
+// ccx expands quadratic shells through averaged nodal normals unless the deck
+// gives each element's own (*NORMAL); at this fold the average shifts the
+// expanded faces by 0.13 mm, more than the 0.1 mm split quads are wide, and
+// ccx stopped with "nonpositive jacobian" (the bay's transponder part did).
+// With the facets' normals both decks solve and meet beam theory, as ours does.
+TEST(CcxExport, QuadraticDecksSolveWhereSmallElementsMeetAFold) {
+  const ShellModel m = folded_strip_with_fine_cells_at_the_fold();
+  const double exact = folded_strip_compliance(m.material);
+  const std::string ccx = ccx_path();
+  ASSERT_FALSE(ccx.empty()) << "CalculiX (ccx, Debian package calculix-ccx) is required and was not found";
+  const std::string dir = temp_dir("fold");
+  ASSERT_FALSE(dir.empty());
+  const ShellResult ours = solve_shell(m);
+  std::printf("folded strip: beam theory %.6g J, ours %.6g J (%+.2f %%)\n", exact, ours.compliance,
+              100 * (ours.compliance / exact - 1));
+  EXPECT_NEAR(ours.compliance, exact, 0.01 * exact);
+  for (const char* type : {"S8R", "S6"}) {
+    CcxExportOptions o;
+    o.element_type = type;
+    const CcxSolution ref = solve_with_ccx(m, dir, std::string("fold_") + type, ccx, o);
+    ASSERT_TRUE(ref.compliance_complete) << type;
+    std::printf("folded strip: ccx %s %.6g J (%+.2f %%)\n", type, ref.compliance, 100 * (ref.compliance / exact - 1));
+    EXPECT_NEAR(ref.compliance, exact, 0.01 * exact) << type;
+  }
+  std::filesystem::remove_all(dir);
+}
+
 }  // namespace
 }  // namespace sheetgen
