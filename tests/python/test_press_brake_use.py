@@ -8,7 +8,11 @@ its one die keeps only flanges 50 V = 640 mm long, longer than any tab. Then
   the failing bend in `press_brake.message`;
 * that part is the one "report" answers (the same search, the same seed);
 * "require" answers no valid part, and says the press brake is why;
-* with the standard tools, "prefer" needs no fallback: the shelf's part bends.
+* with the standard tools, "prefer" needs no fallback: the shelf's part bends;
+* `press_rejected` counts the candidates the check dropped: none under
+  "report" (the search never checks), some under "require" on the press brake
+  that bends nothing, and "prefer" counts the same (its checked passes are
+  the "require" search; the fallback checks nothing).
 
 Run: PYTHONPATH=tools /usr/bin/python3 tests/python/test_press_brake_use.py --sheetgen build/native/cli/sheetgen
 """
@@ -84,6 +88,11 @@ class PressBrakeUse(unittest.TestCase):
         self.assertEqual(part["status"], "ok")
         self.assertFalse(part["press_fallback"])
         self.assertTrue(part["press_brake"]["ok"], part["press_brake"]["message"])
+
+    def test_press_rejected_counts_the_checked_passes_alone(self):
+        self.assertEqual(self.runs["report"]["press_rejected"], 0)
+        self.assertGreater(self.runs["require"]["press_rejected"], 0)
+        self.assertEqual(self.runs["prefer"]["press_rejected"], self.runs["require"]["press_rejected"])
 
 
 if __name__ == "__main__":

@@ -256,6 +256,7 @@ std::vector<int> BeamSearch::evaluate(const std::vector<std::vector<int>>& subse
   for (auto& c : out) {
     result_.fem_calls += c.analysed || !c.fem_error.empty();
     result_.skipped_by_cost += c.over_cost_bound;
+    result_.press_rejected += c.reason == ValidityReason::PressBrake;
     indices.push_back(static_cast<int>(all_.size()));
     seen_[key_of(c.segments)] = static_cast<int>(all_.size());
     all_.push_back(std::move(c));
@@ -383,6 +384,7 @@ void BeamSearch::evaluate_variants(int level, std::vector<Candidate>& variants, 
                    v.analysed ? v.fem.compliance_limit : -1.0, v.analysed ? v.fem.margin_of_safety : -1.0, v.area * 1e4);
     result_.fem_calls += v.analysed || !v.fem_error.empty();
     result_.skipped_by_cost += v.over_cost_bound;
+    result_.press_rejected += v.reason == ValidityReason::PressBrake;
     ++counter;
     if (v.valid()) record_valid(v);
   }

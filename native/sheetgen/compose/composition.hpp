@@ -66,6 +66,7 @@ struct ComposeResult {
   int skipped_by_cost = 0;         // candidates not analysed (ComposeOptions::kept_valid)
   int screen_fem_calls = 0;        // analyses on the screening mesh (not in fem_calls)
   int screened_out = 0;            // candidates analysed on the screening mesh only
+  int press_rejected = 0;          // candidates no bend order of the press brake's tools makes (not analysed)
   bool cancelled = false;
   double seconds = 0;
 };

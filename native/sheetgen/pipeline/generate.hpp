@@ -79,6 +79,7 @@ struct LoadOutcome {
   // "prefer" (Manufacturing::press_brake_fallback): no search with the press-brake check found a valid
   // part, so the load was searched again without it, and the answer comes from that search.
   bool press_fallback = false;
+  int press_rejected = 0;            // candidates the press-brake check rejected (not analysed), over every pass
   double environment_seconds = 0, discovery_seconds = 0, composition_seconds = 0, total_seconds = 0;
 };
 

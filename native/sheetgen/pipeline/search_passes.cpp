@@ -73,6 +73,7 @@ struct FinalCheck {
         return;
       }
       failed.insert({c.segments, c.cost});
+      out.press_rejected += checked.reason == ValidityReason::PressBrake;
       if (reason.empty() && checked.analysed) reason = final_check_failure(checked, scene.requirements);
     }
   }
@@ -93,6 +94,7 @@ bool compose_and_check(const Problem& scene, const Environment& env, int li, con
   out.skipped_by_cost = composed.skipped_by_cost;
   out.screen_fem_calls = composed.screen_fem_calls;
   out.screened_out = composed.screened_out;
+  out.press_rejected += composed.press_rejected;
   // Every kept part failed at the default mesh while the cost bound left dearer
   // ones unanalysed: search again without the bound, which finds exactly the
   // valid parts of an unbounded search (docs/pipeline.md "Cost bound").
@@ -104,6 +106,7 @@ bool compose_and_check(const Problem& scene, const Environment& env, int li, con
     out.fem_calls += composed.fem_calls;
     out.screen_fem_calls += again.screen_fem_calls;
     out.composition_reruns = 1;
+    out.press_rejected += again.press_rejected;
     composed = std::move(again);
     check.run(composed.valid, out);
   }
@@ -166,17 +169,19 @@ bool closer(const Candidate& a, const Candidate& b, const Problem& scene) {
 }
 
 // A later search of the same load (web roots, flat extensions) against the
-// best so far: times and FEM calls count both; the later answer is kept when it
+// best so far: times, FEM calls and press-brake rejections count both; the later answer is kept when it
 // is valid or nearer to valid. True when it was kept.
 bool merge_pass(LoadOutcome& best, LoadOutcome&& pass, const Problem& scene) {
   const double discovery_s = best.discovery_seconds + pass.discovery_seconds;
   const double composition_s = best.composition_seconds + pass.composition_seconds;
   const int fem_calls = best.fem_calls + pass.fem_calls;
+  const int press_rejected = best.press_rejected + pass.press_rejected;
   const bool keep = pass.ok || closer(pass.part, best.part, scene);
   if (keep) best = std::move(pass);
   best.discovery_seconds = discovery_s;
   best.composition_seconds = composition_s;
   best.fem_calls = fem_calls;
+  best.press_rejected = press_rejected;
   return keep;
 }
 
