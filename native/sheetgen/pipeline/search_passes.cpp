@@ -169,8 +169,9 @@ bool closer(const Candidate& a, const Candidate& b, const Problem& scene) {
 }
 
 // A later search of the same load (web roots, flat extensions) against the
-// best so far: times, FEM calls and press-brake rejections count both; the later answer is kept when it
-// is valid or nearer to valid. True when it was kept.
+// best so far: times, FEM calls and press-brake rejections count both; the
+// later answer is kept when it is valid or nearer to valid. True when it was
+// kept.
 bool merge_pass(LoadOutcome& best, LoadOutcome&& pass, const Problem& scene) {
   const double discovery_s = best.discovery_seconds + pass.discovery_seconds;
   const double composition_s = best.composition_seconds + pass.composition_seconds;
