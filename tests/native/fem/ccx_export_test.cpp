@@ -228,7 +228,7 @@ double folded_strip_compliance(const Material& mat) {
 // expanded faces by 0.13 mm, more than the 0.1 mm split quads are wide, and
 // ccx stopped with "nonpositive jacobian" (the bay's transponder part did).
 // With the facets' normals both decks solve and meet beam theory, as ours does.
-TEST(CcxExport, QuadraticDecksSolveWhereSmallElementsMeetAFold) {
+TEST(CcxExport, QuadraticDecksSolveWhereSmallElementsMeetAFoldInCalculix) {
   const ShellModel m = folded_strip_with_fine_cells_at_the_fold();
   const double exact = folded_strip_compliance(m.material);
   const std::string ccx = ccx_path();
