@@ -15,11 +15,14 @@ CalculiX and gmsh (full tier).
   factor, and a part the solver calls ok passes; the same numbers judged
   against raised floors (min_frequency_hz or min_buckling_factor 1.5 x
   CalculiX's, max_deflection 1 um) fail the part on that check, and floors
-  just below CalculiX's pass it.
+  just below CalculiX's pass it; judged as a self-riveted part, ours more than
+  5 % below the bonded solid or above the softer of it and S6 fails it, ours
+  between them passes.
 
 Run: PYTHONPATH=tools /usr/bin/python3 tests/python/test_verify_envelope.py --sheetgen build/native/cli/sheetgen
 """
 import copy
+import dataclasses
 import json
 import math
 import os
@@ -171,6 +174,22 @@ class CornerUnderFar25561(unittest.TestCase):
         self.assertNotIn("first frequency", failures)
         self.assertNotIn("buckling factor", failures)
 
+    def test_a_self_riveted_part_lies_between_its_bonded_solid_and_the_softer_model(self):
+        # The same numbers judged as if the part were self-riveted: ours may lie
+        # from 5 % below the bonded solid to 5 % above the softer of it and S6.
+        ours = [ccx_check.ours_of(self.part)[0][c.name]["compliance"] for c in self.measure.cases]
+
+        def failures(bonded, softer):  # both as multiples of ours
+            cases = [dataclasses.replace(c, bonded_solid=bonded * C, reference=softer * C)
+                     for c, C in zip(self.measure.cases, ours)]
+            findings = Findings()
+            ccx_check.judge_calculix(self.prob, self.part, dataclasses.replace(
+                self.measure, cases=cases, reference=ccx_check.BRACKET), findings)
+            return " ".join(f for f in findings.failures if "compliance differs" in f)
+        self.assertIn("differs from the solid with its laps bonded by -5.7 %", failures(1.06, 1.06))
+        self.assertEqual(failures(1.04, 1.04), "")
+        self.assertEqual(failures(0.80, 0.96), "")
+        self.assertIn(f"differs from CalculiX ({ccx_check.BRACKET}) by 11.1 %", failures(0.80, 0.90))
 
 if __name__ == "__main__":
     result = cli_tests.run_with_sheetgen(sys.modules[__name__])

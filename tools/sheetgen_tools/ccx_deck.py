@@ -305,6 +305,23 @@ def with_static_steps_only(text, keep=None, extra=""):
     return model + "".join(kept)
 
 
+def with_static_subset(text, keep):
+    """The deck with every perturbation step (*BUCKLE, *FREQUENCY, which carry
+    their own loads or none) and, of its static steps, only the indices in
+    `keep`, in the deck's order (see with_static_steps_only for why dropping a
+    static step leaves the others' loads as they were)."""
+    model, steps = split_steps(text)
+    kept, k = [], 0
+    for s in steps:
+        if step_kind(s) == "STATIC":
+            if k in keep:
+                kept.append(s)
+            k += 1
+        else:
+            kept.append(s)
+    return model + "".join(kept)
+
+
 def buckling_factors(steps, dat):
     """{static case index: (lowest factor, the step's own lowest factor, index
     of the *BUCKLE step)}: each *BUCKLE step's lowest positive factor (dat:
