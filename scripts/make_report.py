@@ -133,13 +133,13 @@ def checker_section(out, summary):
            "compliance re-computed by CalculiX on a solid model of the part (tabs as t-thick plates in C3D10, "
            "tools/sheetgen_tools/solid_reference.py, with the supports and loads of the deck `sheetgen export-ccx` writes; "
            "docs/fem.md \"A solid reference\"; the check requires agreement within 5 % and C_CalculiX ≤ 1.05 C_max; "
-           "the shell decks' differences, S6, S8R and S4, are shown for comparison; a self-riveted part passes between its solid, "
+           "the shell decks' differences, S6 and S4, are shown for comparison; a self-riveted part passes between its solid, "
            "which bonds its laps, and the softer of that solid and S6), and the margin of safety from CalculiX's stresses on the S4 deck "
            "by the same stress rule (docs/fem.md; CalculiX's maximum may exceed the stress at MS = 0 by at most 5 %). "
            "FAIL lines are quoted as the checker printed them.", "",
-           "| scene | load | min clearance (mm) | C ours (J) | C CalculiX (J) | difference | vs S6 | vs S8R | vs S4 "
+           "| scene | load | min clearance (mm) | C ours (J) | C CalculiX (J) | difference | vs S6 | vs S4 "
            "| C_CalculiX / C_max | MS ours | MS CalculiX | checker failures |",
-           "|---|---|---|---|---|---|---|---|---|---|---|---|---|"]
+           "|---|---|---|---|---|---|---|---|---|---|---|---|"]
     for run in summary:
         vlog = os.path.join(os.path.realpath(os.path.join(out, run)), "verify.log")
         if not os.path.exists(vlog):
@@ -152,20 +152,20 @@ def checker_section(out, summary):
                 loads.setdefault(m.group(1), {})["clear"] = m.group(2)
             m = re.match(r"(\S+): compliance ours ([0-9.eE+-]+) J, CalculiX (?:solid C3D10 |S6 |S8R |max\(solid, S6\) )?([0-9.eE+-]+) J "
                          r"\(([-+0-9.]+) %\)(?:, S6 ([0-9.eE+-]+) J \(([-+0-9.]+) %\))?"
-                         r"(?:, S8R ([0-9.eE+-]+) J \(([-+0-9.]+) %\))?"
+                         r"(?:, S8R ([0-9.eE+-]+) J \(([-+0-9.]+) %\))?"  # verify.log files written before S8R was dropped
                          r"(?:, S4 ([0-9.eE+-]+) J \(([-+0-9.]+) %\))?.*limit ([0-9.eE+-]+) J", line)
             if m:
                 d = loads.setdefault(m.group(1), {})
                 d.update(ours=m.group(2), ccx=m.group(3), diff=m.group(4), ratio=float(m.group(3)) / float(m.group(11)),
-                         s6_diff=m.group(6) or "–", s8_diff=m.group(8) or "–", s4_diff=m.group(10) or "–")
+                         s6_diff=m.group(6) or "–", s4_diff=m.group(10) or "–")
             m = re.match(r"(\S+): max von Mises .*; MS ours ([-0-9.einf]+), CalculiX ([-0-9.einf]+), required", line)
             if m:
                 loads.setdefault(m.group(1), {}).update(ms=m.group(2), ms_ccx=m.group(3))
         for name, d in loads.items():
             fails = [l[len("FAIL: "):].split(": ", 1)[1] for l in text if l.startswith("FAIL: %s:" % name)]
-            md.append("| %s | %s | %s | %s | %s | %s %% | %s %% | %s %% | %s %% | %s | %s | %s | %s |" % (
+            md.append("| %s | %s | %s | %s | %s | %s %% | %s %% | %s %% | %s | %s | %s | %s |" % (
                 run, name, d.get("clear", "–"), d.get("ours", "–"), d.get("ccx", "–"), d.get("diff", "–"),
-                d.get("s6_diff", "–"), d.get("s8_diff", "–"), d.get("s4_diff", "–"),
+                d.get("s6_diff", "–"), d.get("s4_diff", "–"),
                 "%.3f" % d["ratio"] if "ratio" in d else "–", d.get("ms", "–"), d.get("ms_ccx", "–"),
                 "; ".join(fails) or "none"))
     md.append("")

@@ -5,8 +5,8 @@ taken from result.json's numbers (those are only shown beside, and compared).
 * Every static case (its own *STATIC step of the deck `sheetgen export-ccx`
   writes): the compliance f^T u of that step's *CLOAD set with that step's
   displacements, on the reference model, against the case's limit from the
-  problem and against ours, within CCX_TOLERANCE; S6, S8R and S4 are shown
-  beside it. The reference:
+  problem and against ours, within CCX_TOLERANCE; S6 and S4 are shown beside
+  it. The reference:
   - the solid model of the part (solid_reference.py: the tabs as t-thick
     plates fused and meshed in C3D10 by gmsh, with the supports, box link and
     loads of the deck). Why not CalculiX's shells: they are meshed from our own
@@ -24,8 +24,11 @@ taken from result.json's numbers (those are only shown beside, and compared).
     the stiffer (the bay's battery, forward 9 g: S6 1.7 % below the bonded
     solid, which no riveted part can be) this is the solid's own rule.
     Sheets too far apart to touch in the solid give no solid, and S6 alone.
-  The solid, S6 and S8R solve only a linearly independent few of the cases
-  (the FAR 25.561 six are three directions) and superpose the others, exactly.
+  The solid and S6 solve only a linearly independent few of the cases (the
+  FAR 25.561 six are three directions) and superpose the others, exactly.
+  S8R is not run: soft at fold ends, it is no reference, and it cost the most
+  ccx CPU of the four models (551 s of 1688 s on the corner part of
+  docs/testing.md "Cost per part").
 * The deck's loads are the problem's: each static step's resultant force and
   moment about the centre of mass equal its case's, and the MASS points of the
   *FREQUENCY step have the load's mass, centre of mass and inertia.
@@ -94,7 +97,6 @@ class CaseMeasure:
     name: str                         # the problem's case
     s4: float                         # J, f^T u on the S4 deck
     s6: float                         # J, on the S6 deck
-    s8r: float                        # J, on the S8R deck
     reference: float                  # J, on the reference model (the module docstring)
     deflection: float                 # m, |u| of the load's REF node on the reference model
     sigma_max: float                  # Pa, the stress rule on the S4 deck
@@ -118,7 +120,7 @@ class CalculixMeasure:
     mismatches: list                  # where the deck's loads or masses are not the problem's (failures)
     notes: list                       # the models' sizes and the solid's fallback, one line each
     failures: list                    # models that could not be built or solved
-    seconds: dict                     # per model ("S4", "S6", "S8R", "solid"): (wall s, ccx CPU s)
+    seconds: dict                     # per model ("S4", "S6", "solid"): (wall s, ccx CPU s)
 
 
 def _export(sheetgen, out_dir, load, deck, element_type, modes):
@@ -261,22 +263,6 @@ def _s6_run(sheetgen, out_dir, part, tmp, eigen):
                frequencies_hz=dat.frequencies_hz[0] if dat.frequencies_hz else [], seconds=seconds)
 
 
-def _s8r_run(sheetgen, out_dir, part, tmp):
-    """Per static case (C J, REF |u| m) on the S8R deck, solving only a linearly
-    independent few of the cases and superposing the rest: (cases, wall s)."""
-    text = _export(sheetgen, out_dir, part["load"], os.path.join(tmp, "export8.inp"), "S8R", 0)
-    statics = ccx_deck.static_steps(text)
-    basis, A = ccx_deck.independent_cases([s.loads for s in statics])
-    dat, seconds = _run_ccx(tmp, "part8", ccx_deck.with_static_steps_only(text, keep=set(basis)))
-    blocks = dat.static_displacements()
-    bodies = ccx_deck.links(text)
-    out = []
-    for k, s in enumerate(statics):
-        u = ccx_deck.superpose(A[k], blocks)
-        out.append((ccx_deck.compliance(s.loads, u), float(np.linalg.norm(u[ccx_deck.loaded_ref_node(s.loads, bodies)]))))
-    return out, seconds
-
-
 def _solid_run(part, deck, tmp, notes, failures):
     """Per static case (C J, |u| m) on the solid model, or None (the reason in notes or failures)."""
     name = part["load"]
@@ -307,7 +293,6 @@ def measure_calculix(out_dir, prob, part, sheetgen):
         s6 = _s6_run(sheetgen, out_dir, part, tmp, eigen)
         seconds["S6"] = s6.seconds
         mismatches = deck_mismatches(text, prob, load, cases) + mass_mismatches(s6.text, load)
-        s8r, seconds["S8R"] = _s8r_run(sheetgen, out_dir, part, tmp)
         t0, cpu0 = time.monotonic(), _children_cpu()
         solid = _solid_run(part, text, tmp, notes, failures)
         seconds["solid"] = (time.monotonic() - t0, _children_cpu() - cpu0)  # CPU: ccx's, not gmsh's (in this process)
@@ -318,7 +303,7 @@ def measure_calculix(out_dir, prob, part, sheetgen):
         reference = [max(a, b) for a, b in zip(solid, s6.cases)]  # (C, |u|) of the softer, per case
     else:
         reference = solid or s6.cases
-    measured = [CaseMeasure(name=c["name"], s4=s4[k][0], s6=s6.cases[k][0], s8r=s8r[k][0],
+    measured = [CaseMeasure(name=c["name"], s4=s4[k][0], s6=s6.cases[k][0],
                             reference=reference[k][0], deflection=reference[k][1], sigma_max=s4[k][2],
                             buckling_factor=s6.factors[k][0] if k in s6.factors else None,
                             bonded_solid=bonded[k][0] if bonded else None)
@@ -393,7 +378,7 @@ def _judge_case(prob, part, m, k, case, findings):
     ms = fty / (sf * c.sigma_max) - 1 if c.sigma_max > 0 else math.inf
     line = (f"{name}: case '{case['name']}': compliance CalculiX {m.reference} {c.reference:.5g} J, "
             + (f"S6 {c.s6:.5g} J, " if m.reference != "S6" else "")
-            + f"S8R {c.s8r:.5g} J, S4 {c.s4:.5g} J; limit {limit:.4g} J (C/C_max {c.reference / limit:.3f}); "
+            + f"S4 {c.s4:.5g} J; limit {limit:.4g} J (C/C_max {c.reference / limit:.3f}); "
             f"deflection {c.deflection * 1e3:.4f} mm; max von Mises {c.sigma_max * 1e-6:.2f} MPa, MS {ms:.3f}")
     ours = _ours_case(part, case["name"], k)
     if ours.get("compliance") is not None:
@@ -426,7 +411,7 @@ def _governing_lines(prob, part, m, verdicts, findings):
         findings.note(f"{name}: compliance ours {C:.5g} J, CalculiX {m.reference} {c.reference:.5g} J "
                       f"({_percent(C, c.reference)}), "
                       + (f"S6 {c.s6:.5g} J ({_percent(C, c.s6)}), " if m.reference != "S6" else "")
-                      + f"S8R {c.s8r:.5g} J ({_percent(C, c.s8r)}), S4 {c.s4:.5g} J "
+                      + f"S4 {c.s4:.5g} J "
                       f"({_percent(C, c.s4)}); deflection ours "
                       f"{'%.4f mm' % (deflection * 1e3) if deflection is not None else 'not in result.json'}, "
                       f"CalculiX {c.deflection * 1e3:.4f} mm; limit {v.limit:.4g} J (case '{v.name}', the worst C/C_max)")
