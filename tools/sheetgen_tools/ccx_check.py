@@ -248,7 +248,7 @@ def _s6_run(sheetgen, out_dir, part, tmp, eigen):
         text = ccx_deck.with_buckle_steps(text, BUCKLE_LOAD_SHARE * eigen.min_buckling_factor, BUCKLE_CARD)
     statics = ccx_deck.static_steps(text)
     basis, A = ccx_deck.independent_cases([s.loads for s in statics])
-    dat, seconds = _run_ccx(tmp, "part6", ccx_deck.with_static_subset(text, set(basis)))
+    dat, seconds = _run_ccx(tmp, "part6", ccx_deck.with_static_steps_only(text, keep=set(basis), perturbations=True))
     blocks = dat.static_displacements()
     if len(blocks) != len(basis):
         raise RuntimeError(f"the S6 .dat has {len(blocks)} displacement blocks for {len(basis)} static steps")

@@ -289,36 +289,22 @@ def with_buckle_steps(text, scale, card="3"):
     return model + "".join(buckle_step(s.name, s.loads, scale, card) for s in firsts) + "".join(steps)
 
 
-def with_static_steps_only(text, keep=None, extra=""):
-    """The deck with its perturbation steps dropped and, of its static steps,
-    only the indices in `keep` (all when None); `extra` (output requests) is
-    added to each kept step. Every step after ccx's first writes *CLOAD, OP=NEW,
-    so dropping one leaves the others' loads as they were."""
+def with_static_steps_only(text, keep=None, extra="", perturbations=False):
+    """The deck with, of its static steps, only the indices in `keep` (all when
+    None), and its perturbation steps (*BUCKLE, *FREQUENCY, which carry their
+    own loads or none) dropped unless `perturbations`; `extra` (output
+    requests) is added to each kept static step. Every step after ccx's first
+    writes *CLOAD, OP=NEW, so dropping one leaves the others' loads as they were."""
     model, steps = split_steps(text)
     kept, k = [], 0
     for s in steps:
         if step_kind(s) != "STATIC":
+            if perturbations:
+                kept.append(s)
             continue
         if keep is None or k in keep:
             kept.append(s.replace("*END STEP", extra + "*END STEP") if extra else s)
         k += 1
-    return model + "".join(kept)
-
-
-def with_static_subset(text, keep):
-    """The deck with every perturbation step (*BUCKLE, *FREQUENCY, which carry
-    their own loads or none) and, of its static steps, only the indices in
-    `keep`, in the deck's order (see with_static_steps_only for why dropping a
-    static step leaves the others' loads as they were)."""
-    model, steps = split_steps(text)
-    kept, k = [], 0
-    for s in steps:
-        if step_kind(s) == "STATIC":
-            if k in keep:
-                kept.append(s)
-            k += 1
-        else:
-            kept.append(s)
     return model + "".join(kept)
 
 
