@@ -76,7 +76,7 @@ def scene_picture(run, prob, meshes, result, path):
     ax.set_zlabel("z (m)")
     elev, azim = VIEWS.get(run, (25, -60))
     ax.view_init(elev=elev, azim=azim)
-    n = len(result["parts"])
+    n = max(len(result["parts"]), len(prob["loads"]))  # a load with no entry has no part either
     title = "%s: %d/%d loads with a part" % (run, n_ok, n)
     if n_ok < n:
         title += "\n(red, translucent: nearest candidate of a load without a valid part)"
