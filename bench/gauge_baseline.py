@@ -122,22 +122,20 @@ def comparison_table(doc, base_t, free, expert):
     for load in doc["loads"]:
         name = load["name"]
         f = free.get(name)
+        f = f if f and f["status"] == "ok" else None
         e = expert.get(name)
-        fcell = ("%.0f cm², %.3f kg, %d bends" % (f["area_m2"] * 1e4, f["mass_kg"], f["bends"])
-                 if f and f["status"] == "ok" else "no part")
+        fcell = "%.0f cm², %.3f kg, %d bends" % (f["area_m2"] * 1e4, f["mass_kg"], f["bends"]) if f else "no part"
         if e:
             p = e["part"]
             ecell = "%.0f cm², %.3f kg, %d bends" % (p["area_m2"] * 1e4, p["mass_kg"], p["bends"])
             gauge = "%.3f" % (e["thickness"] / INCH)
         else:
             ecell, gauge = "no part at any gauge tried", "–"
-            complete = False
-        if not (f and f["status"] == "ok"):
-            complete = False
-        change = "%+.1f %%" % (100.0 * (f["mass_kg"] / e["part"]["mass_kg"] - 1.0)) if (e and f and f["status"] == "ok") else "–"
+        change = "%+.1f %%" % (100.0 * (f["mass_kg"] / e["part"]["mass_kg"] - 1.0)) if (e and f) else "–"
         md.append(f"| {name} | {fcell} | {ecell} | {gauge} | {change} |")
         # Totals over the loads both have a part for, so that they compare like with like.
-        if e and f and f["status"] == "ok":
+        complete = complete and bool(e and f)
+        if e and f:
             tot["free_a"] += f["area_m2"]
             tot["free_m"] += f["mass_kg"]
             tot["ex_a"] += e["part"]["area_m2"]

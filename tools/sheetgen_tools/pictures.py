@@ -78,7 +78,7 @@ def scene_picture(run, prob, meshes, result, path):
     ax.view_init(elev=elev, azim=azim)
     n = max(len(result["parts"]), len(prob["loads"]))  # a load with no entry has no part either
     title = "%s: %d/%d loads with a part" % (run, n_ok, n)
-    if n_ok < n:
+    if n_ok < len(result["parts"]):  # some entry is a nearest candidate, drawn in red
         title += "\n(red, translucent: nearest candidate of a load without a valid part)"
     ax.set_title(title, fontsize=10)
     fig.tight_layout()
