@@ -48,7 +48,7 @@ import subprocess
 
 import numpy as np
 
-from . import ccx_deck
+from . import ccx_deck, geometry
 
 # gmsh's 10-node tetrahedron numbers its edge nodes (0,1) (1,2) (2,0) (3,0) (3,2) (3,1);
 # CalculiX's C3D10 (as Abaqus) wants (1,2) (2,3) (3,1) (1,4) (2,4) (3,4).
@@ -194,18 +194,16 @@ def _interior_samples(tab, t, per_side=5):
     Q = np.c_[(C - C[0]) @ a, (C - C[0]) @ b]
     lo, hi = Q.min(axis=0), Q.max(axis=0)
     grid = np.stack(np.meshgrid(*(np.linspace(lo[k], hi[k], per_side + 2)[1:-1] for k in (0, 1))), -1).reshape(-1, 2)
+    P = C[0] + np.outer(grid[:, 0], a) + np.outer(grid[:, 1], b)
     inside = np.zeros(len(grid), bool)
     clear = np.ones(len(grid), bool)
     for k in range(len(Q)):
         p, q = Q[k], Q[(k + 1) % len(Q)]
-        crosses = (p[1] > grid[:, 1]) != (q[1] > grid[:, 1])
+        crosses = (p[1] > grid[:, 1]) != (q[1] > grid[:, 1])  # even-odd rule along +u
         x_at = p[0] + (grid[:, 1] - p[1]) * (q[0] - p[0]) / np.where(q[1] != p[1], q[1] - p[1], 1.0)
         inside ^= crosses & (grid[:, 0] < x_at)
-        e = q - p
-        s = np.clip((grid - p) @ e / (e @ e), 0.0, 1.0)
-        clear &= np.linalg.norm(grid - p - np.outer(s, e), axis=1) >= t
-    keep = grid[inside & clear]
-    return C[0] + np.outer(keep[:, 0], a) + np.outer(keep[:, 1], b)
+        clear &= geometry.distance_to_segment(P, C[k], C[(k + 1) % len(C)]) >= t
+    return P[inside & clear]
 
 
 def uncovered_tabs(tabs, t, X, tets):
