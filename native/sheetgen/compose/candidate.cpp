@@ -1,7 +1,6 @@
 #include "sheetgen/compose/candidate.hpp"
 
 #include <algorithm>
-#include <optional>
 #include <utility>
 
 #include "sheetgen/env/environment.hpp"
@@ -33,7 +32,7 @@ int count_rivets(const Problem& problem, const Candidate& c, const RealisedPart&
 }  // namespace
 
 Candidate evaluate_part(const Problem& problem, const Environment& env, int load_index, Candidate c, double element_size,
-                        ShellSolver* solver, double cost_bound, AnalysisMemo* memo) {
+                        ShellSolver* solver, double cost_bound) {
   c.geometry_ok = false;
   c.analysed = false;
   c.over_cost_bound = false;
@@ -75,50 +74,36 @@ Candidate evaluate_part(const Problem& problem, const Environment& env, int load
     }
   }
   c.geometry_ok = true;
-  analyse_candidate(problem, load_index, c, element_size, solver, memo);
+  analyse_candidate(problem, load_index, c, element_size, solver);
   return c;
 }
 
-void analyse_candidate(const Problem& problem, int load_index, Candidate& c, double element_size, ShellSolver* solver,
-                       AnalysisMemo* memo) {
+void analyse_candidate(const Problem& problem, int load_index, Candidate& c, double element_size, ShellSolver* solver) {
   c.analysed = false;
-  c.reused = false;
   c.fem_error.clear();
-  PartModelOptions mo;
-  mo.element_size = element_size;
-  mo.self_rivets = c.self_rivets;
-  // Buckling and frequencies after the static cases pass: in the search only
-  // when the problem requires them; at the default mesh (the final check)
-  // always, so every answer reports them.
-  mo.eigen_checks = problem.requirements.eigen_checks || element_size <= 0;
-  const PlateGeometry geometry = plate_geometry(c.part, realise(c.part));
-  const std::string key = memo ? AnalysisMemo::key_of(geometry, mo) : std::string();
-  if (memo) {
-    if (std::optional<MemoEntry> kept = memo->find(key)) {
-      c.fem = std::move(kept->fem);
-      c.fem_error = std::move(kept->fem_error);
-      c.analysed = c.fem_error.empty();
-      c.reused = true;
-      return;
-    }
-  }
   try {
-    c.fem = analyse_part(problem, load_index, geometry, mo, solver);
+    PartModelOptions mo;
+    mo.element_size = element_size;
+    mo.self_rivets = c.self_rivets;
+    // Buckling and frequencies after the static cases pass: in the search only
+    // when the problem requires them; at the default mesh (the final check)
+    // always, so every answer reports them.
+    mo.eigen_checks = problem.requirements.eigen_checks || element_size <= 0;
+    c.fem = analyse_part(problem, load_index, plate_geometry(c.part, realise(c.part)), mo, solver);
     c.analysed = true;
   } catch (const FemError& e) {
     c.fem_error = e.what();
   }
-  if (memo) memo->insert(key, MemoEntry{c.analysed ? c.fem : StructuralResult{}, c.fem_error});
 }
 
 Candidate evaluate_candidate(const Problem& problem, const Environment& env, int load_index, const Part& base,
                              const SegmentLibrary& library, std::vector<int> segments, double element_size,
-                             ShellSolver* solver, double cost_bound, AnalysisMemo* memo) {
+                             ShellSolver* solver, double cost_bound) {
   Candidate c;
   std::sort(segments.begin(), segments.end());
   c.segments = segments;
   c.part = assemble_part(base, library, segments);
-  return evaluate_part(problem, env, load_index, std::move(c), element_size, solver, cost_bound, memo);
+  return evaluate_part(problem, env, load_index, std::move(c), element_size, solver, cost_bound);
 }
 
 }  // namespace sheetgen

@@ -8,7 +8,6 @@
 #include <string>
 #include <vector>
 
-#include "sheetgen/compose/analysis_memo.hpp"
 #include "sheetgen/core/problem.hpp"
 #include "sheetgen/discovery/segment_library.hpp"
 #include "sheetgen/part/part.hpp"
@@ -36,7 +35,6 @@ struct Candidate {
   std::vector<SelfRivetTie> self_rivets;  // gusset rivets (paper Sec. 5.2), tied in the FEM
   bool over_cost_bound = false;    // geometry ok, but not analysed: dearer than the valid parts kept
   bool screened_out = false;       // analysed on the screening mesh only, not among the best there (fem is that result)
-  bool reused = false;             // fem (or fem_error) is an earlier analysis of the same part (AnalysisMemo)
   bool valid() const { return geometry_ok && analysed && fem.passes(); }
 };
 
@@ -45,19 +43,18 @@ struct Candidate {
 Candidate evaluate_candidate(const Problem& problem, const Environment& env, int load_index, const Part& base,
                              const SegmentLibrary& library, std::vector<int> segments, double element_size,
                              ShellSolver* solver = nullptr,
-                             double cost_bound = std::numeric_limits<double>::infinity(), AnalysisMemo* memo = nullptr);
+                             double cost_bound = std::numeric_limits<double>::infinity());
 
 // The FEM of a candidate whose geometry passed: sets analysed and fem, or
 // fem_error when the model cannot be solved. element_size <= 0: the default mesh.
-// With a memo, a part it has seen at the same mesh is not analysed again.
 void analyse_candidate(const Problem& problem, int load_index, Candidate& candidate, double element_size,
-                       ShellSolver* solver = nullptr, AnalysisMemo* memo = nullptr);
+                       ShellSolver* solver = nullptr);
 
 // Re-evaluates a candidate's own part (with its self-rivets), e.g. at the
 // default mesh for the final check. A part whose cost (m^2) is at least
 // cost_bound is checked but not analysed (over_cost_bound).
 Candidate evaluate_part(const Problem& problem, const Environment& env, int load_index, Candidate candidate,
                         double element_size, ShellSolver* solver = nullptr,
-                        double cost_bound = std::numeric_limits<double>::infinity(), AnalysisMemo* memo = nullptr);
+                        double cost_bound = std::numeric_limits<double>::infinity());
 
 }  // namespace sheetgen

@@ -170,7 +170,6 @@ class BeamSearch {
   std::vector<std::vector<int>> first_level();
   std::vector<int> evaluate(const std::vector<std::vector<int>>& subsets);
   void reanalyse(std::vector<Candidate>& batch);
-  void count_analysis(const Candidate& c);
   void record_valid(const Candidate& c);
   void record(const std::vector<int>& fresh);
   bool better_closest(const Candidate& c) const;
@@ -248,14 +247,14 @@ std::vector<int> BeamSearch::evaluate(const std::vector<std::vector<int>>& subse
       const Part probe = assemble_part(base_, library_, subsets[i]);
       const double h = screening_ ? options_.screen_element_factor * default_size(probe) : search_size(probe);
       out[i] = evaluate_candidate(problem_, env_, load_index_, base_, library_, subsets[i], h,
-                                  &solvers_.local(), bound, options_.memo);
+                                  &solvers_.local(), bound);
       if (progress_) ++progress_->evaluated;
     });
   });
   if (screening_) reanalyse(out);
   std::vector<int> indices;
   for (auto& c : out) {
-    count_analysis(c);
+    result_.fem_calls += c.analysed || !c.fem_error.empty();
     result_.skipped_by_cost += c.over_cost_bound;
     result_.press_rejected += c.reason == ValidityReason::PressBrake;
     indices.push_back(static_cast<int>(all_.size()));
@@ -275,7 +274,7 @@ void BeamSearch::reanalyse(std::vector<Candidate>& batch) {
   for (size_t i = 0; i < batch.size(); ++i) {
     const Candidate& c = batch[i];
     if (!c.geometry_ok || c.over_cost_bound) continue;
-    ++(c.reused ? result_.fem_reused : result_.screen_fem_calls);
+    ++result_.screen_fem_calls;
     if (!c.analysed || c.valid()) again.push_back(i);
     else if (!result_.found || c.cost < result_.best.cost) ranked.push_back(i);
   }
@@ -295,16 +294,9 @@ void BeamSearch::reanalyse(std::vector<Candidate>& batch) {
     tbb::parallel_for(size_t(0), again.size(), [&](size_t k) {
       if (cancel_requested()) return;
       Candidate& c = batch[again[k]];
-      analyse_candidate(problem_, load_index_, c, search_size(c.part), &solvers_.local(), options_.memo);
+      analyse_candidate(problem_, load_index_, c, search_size(c.part), &solvers_.local());
     });
   });
-}
-
-// A candidate's analysis on the search mesh, made or answered by the memo.
-// (A screened-out candidate is neither: its screening run counted in reanalyse.)
-void BeamSearch::count_analysis(const Candidate& c) {
-  if (!c.analysed && c.fem_error.empty()) return;
-  ++(c.reused ? result_.fem_reused : result_.fem_calls);
 }
 
 // A valid candidate: a fallback for the final check, the answer when cheapest.
@@ -380,7 +372,7 @@ void BeamSearch::evaluate_variants(int level, std::vector<Candidate>& variants, 
     tbb::parallel_for(size_t(0), variants.size(), [&](size_t k) {
       if (cancel_requested()) return;
       const double h = search_size(variants[k].part);
-      checked[k] = evaluate_part(problem_, env_, load_index_, variants[k], h, &solvers_.local(), bound, options_.memo);
+      checked[k] = evaluate_part(problem_, env_, load_index_, variants[k], h, &solvers_.local(), bound);
       if (progress_) ++progress_->evaluated;
     });
   });
@@ -390,7 +382,7 @@ void BeamSearch::evaluate_variants(int level, std::vector<Candidate>& variants, 
                    kind, level, v.part.size(), v.self_rivets.size(), v.geometry_ok ? "ok" : "FAIL ",
                    v.geometry_ok ? "" : v.message.c_str(), v.analysed ? v.fem.compliance : -1.0,
                    v.analysed ? v.fem.compliance_limit : -1.0, v.analysed ? v.fem.margin_of_safety : -1.0, v.area * 1e4);
-    count_analysis(v);
+    result_.fem_calls += v.analysed || !v.fem_error.empty();
     result_.skipped_by_cost += v.over_cost_bound;
     result_.press_rejected += v.reason == ValidityReason::PressBrake;
     ++counter;

@@ -36,9 +36,6 @@ struct ComposeOptions {
   double screen_element_factor = 3.0;
   int screen_keep = 2;
   int threads = 0;                 // 0 = all cores; results do not depend on it
-  // Analyses already made for this load (by an earlier pass), and where this
-  // search keeps its own; nullptr: none kept. Same parts either way.
-  AnalysisMemo* memo = nullptr;
 };
 
 struct ComposeHistoryRow {
@@ -62,8 +59,7 @@ struct ComposeResult {
   Candidate closest;               // otherwise: the candidate nearest to valid (for the user's reason)
   std::string reason;              // when not found: which constraint failed, by how much
   std::vector<ComposeHistoryRow> history;
-  int fem_calls = 0;                // analyses made on the search mesh
-  int fem_reused = 0;               // analyses the memo answered instead (either mesh)
+  int fem_calls = 0;
   int candidates = 0;
   int self_rivet_candidates = 0;   // gusset variants evaluated
   int lip_candidates = 0;          // lipped variants evaluated

@@ -63,8 +63,7 @@ struct LoadOutcome {
   std::vector<ComposeHistoryRow> history;
   DiscoveryStats discovery;
   int library_size = 0;
-  int fem_calls = 0;                 // analyses made on the search and default meshes, over every pass
-  int fem_reused = 0;                // analyses answered by the load's memo instead (compose/analysis_memo.hpp)
+  int fem_calls = 0;
   int self_rivet_candidates = 0;     // gusset variants the composition tried
   int lip_candidates = 0;            // lipped variants the composition tried
   int skipped_by_cost = 0;           // candidates the cost bound left unanalysed (ComposeOptions::kept_valid)

@@ -92,7 +92,6 @@ void add_search_fields(json& p, const LoadOutcome& o) {
   p["history"] = history;
   p["library_segments"] = o.library_size;
   p["fem_calls"] = o.fem_calls;
-  p["fem_reused"] = o.fem_reused;
   p["self_rivet_candidates"] = o.self_rivet_candidates;
   p["lip_candidates"] = o.lip_candidates;
   p["skipped_by_cost"] = o.skipped_by_cost;

@@ -4,7 +4,6 @@
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
-#include <limits>
 #include <set>
 #include <string>
 #include <utility>
@@ -16,8 +15,6 @@
 namespace sheetgen {
 
 namespace {
-
-constexpr double kNoCostBound = std::numeric_limits<double>::infinity();
 
 double seconds_since(std::chrono::steady_clock::time_point t) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - t).count();
@@ -57,7 +54,6 @@ struct FinalCheck {
   const Environment& env;
   int load_index;
   bool web_roots;    // for the debug line
-  AnalysisMemo* memo;  // the load's analyses (ComposeOptions::memo)
   std::set<std::pair<std::vector<int>, double>> failed;  // (segments, cost) of parts rejected
   std::string reason;  // why the cheapest analysed part failed, when one did
 
@@ -66,8 +62,8 @@ struct FinalCheck {
     for (const Candidate& c : valid) {
       if (failed.count({c.segments, c.cost})) continue;
       const auto tc = std::chrono::steady_clock::now();
-      Candidate checked = evaluate_part(scene, env, load_index, c, 0.0, nullptr, kNoCostBound, memo);
-      ++(checked.reused ? out.fem_reused : out.fem_calls);
+      Candidate checked = evaluate_part(scene, env, load_index, c, 0.0);
+      ++out.fem_calls;
       if (std::getenv("SHEETGEN_COMPOSE_DEBUG"))
         std::fprintf(stderr, "[final check] %s%s: %s in %.2f s\n", out.load.c_str(), web_roots ? " (web roots)" : "",
                      checked.valid() ? "valid" : "fails", seconds_since(tc));
@@ -93,11 +89,10 @@ bool compose_and_check(const Problem& scene, const Environment& env, int li, con
   const auto t0 = std::chrono::steady_clock::now();
   ComposeResult composed = compose_part(scene, env, li, found.base, found.library, copt, compose_progress(progress));
   if (composed.cancelled || cancel_requested(progress)) return false;
-  FinalCheck check{scene, env, li, web_roots, copt.memo, {}, {}};
+  FinalCheck check{scene, env, li, web_roots, {}, {}};
   check.run(composed.valid, out);
   out.skipped_by_cost = composed.skipped_by_cost;
   out.screen_fem_calls = composed.screen_fem_calls;
-  out.fem_reused += composed.fem_reused;
   out.screened_out = composed.screened_out;
   out.press_rejected += composed.press_rejected;
   // Every kept part failed at the default mesh while the cost bound left dearer
@@ -110,7 +105,6 @@ bool compose_and_check(const Problem& scene, const Environment& env, int li, con
     if (again.cancelled || cancel_requested(progress)) return false;
     out.fem_calls += composed.fem_calls;
     out.screen_fem_calls += again.screen_fem_calls;
-    out.fem_reused += again.fem_reused;
     out.composition_reruns = 1;
     out.press_rejected += again.press_rejected;
     composed = std::move(again);
@@ -148,13 +142,7 @@ bool search_pass(const Problem& scene, const Environment& env, int li, const Gen
   if (found.cancelled || cancel_requested(progress)) return false;
 
   if (progress) progress->stage = static_cast<int>(Stage::Composition);
-  const bool finished = compose_and_check(scene, env, li, found, options, web_roots, progress, out);
-  if (std::getenv("SHEETGEN_COMPOSE_DEBUG"))
-    std::fprintf(stderr, "[pass] %s web %d flat %d press %d seed %llu: discovery %.1f s, composition %.1f s, %d analyses, %d reused, %s\n",
-                 out.load.c_str(), web_roots, scene.manufacturing.flat_extensions, scene.manufacturing.press_brake_required,
-                 static_cast<unsigned long long>(scene.search.seed), out.discovery_seconds, out.composition_seconds,
-                 out.fem_calls, out.fem_reused, out.ok ? "valid part" : "no part");
-  return finished;
+  return compose_and_check(scene, env, li, found, options, web_roots, progress, out);
 }
 
 // Of two answers without a valid part, is `a` nearer to valid than `b`? An
@@ -188,14 +176,12 @@ bool merge_pass(LoadOutcome& best, LoadOutcome&& pass, const Problem& scene) {
   const double discovery_s = best.discovery_seconds + pass.discovery_seconds;
   const double composition_s = best.composition_seconds + pass.composition_seconds;
   const int fem_calls = best.fem_calls + pass.fem_calls;
-  const int fem_reused = best.fem_reused + pass.fem_reused;
   const int press_rejected = best.press_rejected + pass.press_rejected;
   const bool keep = pass.ok || closer(pass.part, best.part, scene);
   if (keep) best = std::move(pass);
   best.discovery_seconds = discovery_s;
   best.composition_seconds = composition_s;
   best.fem_calls = fem_calls;
-  best.fem_reused = fem_reused;
   best.press_rejected = press_rejected;
   return keep;
 }
@@ -272,15 +258,9 @@ LoadSearch search_passes(const Problem& scene, const Environment& env, int li, c
 
 }  // namespace
 
-LoadSearch search_load(const Environment& env, int li, const LoadOutcome& start, const GenerateOptions& given,
+LoadSearch search_load(const Environment& env, int li, const LoadOutcome& start, const GenerateOptions& options,
                        bool flat_fallback, GenerateProgress* progress) {
   const Problem& scene = env.problem();
-  // Every pass of this load shares one memo of analyses: the passes differ in
-  // library, grammar, seed and press-brake check, never in the load, material
-  // or requirements, so the analysis of a part is the same in all of them.
-  AnalysisMemo memo;
-  GenerateOptions options = given;
-  options.compose.memo = &memo;
   LoadSearch s = search_passes(scene, env, li, start, options, flat_fallback, progress);
   // "prefer" (docs/manufacturing.md "Press brake"): no part the press-brake
   // tools bend; every pass again without that check. The answer is then a

@@ -7,11 +7,6 @@
 // * Screening re-analyses on the search mesh what could matter: with every
 //   candidate kept it is the plain search; with the default it leaves some out,
 //   and every valid part it reports carries its search-mesh analysis.
-// * The analysis memo (ComposeOptions::memo) only answers from analyses made
-//   before: a search with it finds what the search without it finds, bit for
-//   bit, and a second search over the same library analyses nothing anew. Used
-//   as the pipeline uses it, the search without the press-brake check after the
-//   one with it reuses what that one analysed.
 #include <gtest/gtest.h>
 
 #include <cstdio>
@@ -140,63 +135,6 @@ TEST(Screening, ValidPartsCarryTheirSearchMeshAnalysis) {
     EXPECT_EQ(again.fem.margin_of_safety, v.fem.margin_of_safety);
     EXPECT_FALSE(v.screened_out);
   }
-}
-
-// The same answer, bit for bit: best part, its analysis, the valid parts and the beam's history.
-void expect_same_search(const ComposeResult& a, const ComposeResult& b) {
-  ASSERT_EQ(a.found, b.found);
-  EXPECT_EQ(a.best.segments, b.best.segments);
-  EXPECT_EQ(a.best.cost, b.best.cost);
-  EXPECT_EQ(a.best.fem.compliance, b.best.fem.compliance);
-  EXPECT_EQ(a.best.fem.margin_of_safety, b.best.fem.margin_of_safety);
-  EXPECT_EQ(a.candidates, b.candidates);
-  ASSERT_EQ(a.valid.size(), b.valid.size());
-  for (size_t i = 0; i < a.valid.size(); ++i) {
-    EXPECT_EQ(a.valid[i].segments, b.valid[i].segments);
-    EXPECT_EQ(a.valid[i].fem.compliance, b.valid[i].fem.compliance);
-  }
-  ASSERT_EQ(a.history.size(), b.history.size());
-  for (size_t i = 0; i < a.history.size(); ++i) EXPECT_EQ(a.history[i].best_cost, b.history[i].best_cost);
-}
-
-TEST(AnalysisMemo, ASecondSearchOfTheSameLibraryAnalysesNothingAnew) {
-  const CornerLibrary& lib = CornerLibrary::get();
-  const ComposeResult ref = lib.compose(ComposeOptions{});
-  AnalysisMemo memo;
-  ComposeOptions o;
-  o.memo = &memo;
-  const ComposeResult first = lib.compose(o);
-  const ComposeResult second = lib.compose(o);
-  std::printf("memo: first search %d + %d analyses, %d reused; second %d + %d, %d reused\n", first.screen_fem_calls,
-              first.fem_calls, first.fem_reused, second.screen_fem_calls, second.fem_calls, second.fem_reused);
-  ASSERT_TRUE(ref.found) << ref.reason;
-  expect_same_search(first, ref);
-  expect_same_search(second, ref);
-  EXPECT_EQ(first.fem_calls, ref.fem_calls);
-  EXPECT_EQ(first.screen_fem_calls, ref.screen_fem_calls);
-  EXPECT_EQ(second.fem_calls, 0);
-  EXPECT_EQ(second.screen_fem_calls, 0);
-  EXPECT_EQ(second.fem_reused, ref.fem_calls + ref.screen_fem_calls);
-  EXPECT_EQ(memo.stats().hits, static_cast<size_t>(first.fem_reused + second.fem_reused));
-}
-
-TEST(AnalysisMemo, TheSearchWithoutThePressCheckReusesTheOneWithIt) {
-  const CornerLibrary& lib = CornerLibrary::get();
-  const ComposeResult ref = lib.compose(ComposeOptions{});
-  Problem checked = lib.problem;
-  checked.manufacturing.press_brake_required = true;
-  AnalysisMemo memo;
-  ComposeOptions o;
-  o.memo = &memo;
-  o.threads = 2;
-  const ComposeResult with_check = compose_part(checked, lib.env, 0, lib.found.base, lib.found.library, o);
-  const ComposeResult after = lib.compose(o);
-  std::printf("memo: with the press check %d + %d analyses; without it %d + %d, %d reused (alone %d + %d)\n",
-              with_check.screen_fem_calls, with_check.fem_calls, after.screen_fem_calls, after.fem_calls,
-              after.fem_reused, ref.screen_fem_calls, ref.fem_calls);
-  expect_same_search(after, ref);
-  EXPECT_GT(after.fem_reused, 0);
-  EXPECT_EQ(after.fem_calls + after.screen_fem_calls + after.fem_reused, ref.fem_calls + ref.screen_fem_calls);
 }
 
 }  // namespace
