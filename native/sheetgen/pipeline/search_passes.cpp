@@ -142,7 +142,13 @@ bool search_pass(const Problem& scene, const Environment& env, int li, const Gen
   if (found.cancelled || cancel_requested(progress)) return false;
 
   if (progress) progress->stage = static_cast<int>(Stage::Composition);
-  return compose_and_check(scene, env, li, found, options, web_roots, progress, out);
+  const bool finished = compose_and_check(scene, env, li, found, options, web_roots, progress, out);
+  if (std::getenv("SHEETGEN_COMPOSE_DEBUG"))  // where a load's time goes, pass by pass
+    std::fprintf(stderr, "[pass] %s web %d flat %d press %d seed %llu: discovery %.1f s, composition %.1f s, %d analyses, %s\n",
+                 out.load.c_str(), web_roots, scene.manufacturing.flat_extensions, scene.manufacturing.press_brake_required,
+                 static_cast<unsigned long long>(scene.search.seed), out.discovery_seconds, out.composition_seconds,
+                 out.fem_calls, out.ok ? "valid part" : "no part");
+  return finished;
 }
 
 // Of two answers without a valid part, is `a` nearer to valid than `b`? An
