@@ -109,8 +109,10 @@ def main():
             line, gap = load_row(args, scene, load, runs)
             lines.append(line)
             gaps.append(gap)
-    within = sum(1 for g in gaps if g is not None and g <= 0.05)
-    lines += ["", "%d of %d loads have a default part within 5 %% of the best-known part." % (within, len(gaps))]
+    with_part = [g for g in gaps if g is not None]
+    within = sum(1 for g in with_part if g <= 0.05)
+    lines += ["", "%d of the %d loads with a default part (of %d loads) are within 5 %% of the best-known part." %
+              (within, len(with_part), len(gaps))]
     os.makedirs(args.out, exist_ok=True)
     with open(os.path.join(args.out, "search_quality.md"), "w", encoding="utf-8") as f:
         f.write("\n".join(lines) + "\n")
