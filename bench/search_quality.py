@@ -19,7 +19,8 @@ is over the seeds that found one.
 Each run keeps its output folder, OUT/<scene>/<seed>x<factor>/, so
 `python3 -m sheetgen_tools.verify` can check its parts; --reuse reads a run's
 result.json where one exists. --jobs N solves N problems at once with one
-thread each (a solve's parts do not depend on its thread count, docs/pipeline.md).
+thread each (a solve's parts do not depend on its thread count: docs/discovery.md,
+docs/pipeline.md).
 Prints a Markdown table (and writes it to OUT/search_quality.md).
 """
 import argparse
@@ -42,6 +43,7 @@ def seed_list(text):
 
 
 def iterations_of(scene):
+    """The scene's own search.iterations (per chain)."""
     with open(paths.scene_problem(scene), encoding="utf-8") as f:
         return json.load(f).get("search", {}).get("iterations", 1000)
 
