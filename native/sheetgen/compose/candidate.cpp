@@ -11,12 +11,6 @@
 namespace sheetgen {
 
 namespace {
-// The press-aware order search's budget per candidate: a quarter of the
-// answer's (ManufacturingPlanOptions::press_brake_sweeps), because the search
-// pays it on every candidate it analyses; the part-only order is checked first
-// and passes for most parts.
-constexpr int kSearchPressBrakeSweeps = 50;
-
 // The candidate's rivets, before its FEM: the self-rivets and the flange
 // rivets laid out as the FEM will lay them out, so the cost is exact before
 // the analysis and the cost bound as tight as it can be. A part whose flanges

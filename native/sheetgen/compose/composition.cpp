@@ -31,13 +31,6 @@ std::string key_of(const std::vector<int>& ids) {
   return k;
 }
 
-// A segment with all its ancestors (a subset must be closed under parents).
-std::vector<int> closure(const SegmentLibrary& library, int id) {
-  std::vector<int> out;
-  for (const Segment* s = library.find(id); s; s = s->parent >= 0 ? library.find(s->parent) : nullptr) out.push_back(s->id);
-  std::sort(out.begin(), out.end());
-  return out;
-}
 
 std::vector<int> unite(const std::vector<int>& a, const std::vector<int>& b) {
   std::vector<int> out;
@@ -223,7 +216,7 @@ std::vector<std::vector<int>> BeamSearch::first_level() {
   std::vector<std::vector<int>> frontier;
   for (const Segment& s : library_.segments()) {
     if (s.rivet_area < 0) continue;
-    auto sub = closure(library_, s.id);
+    auto sub = segment_closure(library_, s.id);
     if (static_cast<int>(sub.size()) <= options_.max_segments && !seen_.count(key_of(sub))) {
       seen_[key_of(sub)] = -1;
       frontier.push_back(sub);
@@ -456,7 +449,7 @@ std::vector<std::vector<int>> BeamSearch::expand(const std::vector<int>& beam) {
       const int id = library_.segments()[s].id;
       if (library_.segments()[s].rivet_area < 0) continue;
       if (std::binary_search(all_[i].segments.begin(), all_[i].segments.end(), id)) continue;
-      auto sub = unite(all_[i].segments, closure(library_, id));
+      auto sub = unite(all_[i].segments, segment_closure(library_, id));
       if (static_cast<int>(sub.size()) > options_.max_segments) continue;
       const std::string k = key_of(sub);
       if (seen_.count(k)) continue;

@@ -13,6 +13,7 @@
 #include <stdexcept>
 #include <unordered_map>
 
+#include "sheetgen/discovery/bendable.hpp"
 #include "sheetgen/env/environment.hpp"
 #include "sheetgen/part/validity.hpp"
 #include "sheetgen/part/flat_pattern.hpp"
@@ -131,6 +132,7 @@ struct Context {
   SheetSpec spec;
   FeelerPrior prior;
   int nra = 0;
+  const Part* base = nullptr;  // the base part (DiscoveryResult::base)
 };
 
 bool is_feeler(const Part& part, int i) { return i > 0 && part.tabs[i].tag < 0 && part.tabs[i].rivet_area < 0; }
@@ -540,6 +542,22 @@ bool optimise(Candidate& c, const Context& cx, Chain& ch) {
   return true;
 }
 
+// Optimised, and bendable with the press brake's tools on the base and its
+// ancestors (bendable.hpp): a connection worth offering to the library.
+bool ready_to_offer(Candidate& c, const Context& cx, Chain& ch, const SegmentLibrary& snapshot) {
+  if (!optimise(c, cx, ch)) return false;
+  if (c.segment.parent >= 0 && !snapshot.find(c.segment.parent)) return true;  // admit() rejects it
+  const BendableResult bendable = segment_bendable(cx.problem, *cx.base, snapshot, c.segment);
+  static const bool dbg = std::getenv("SHEETGEN_DISC_DEBUG") != nullptr;  // one line per segment checked
+  if (dbg)
+    std::fprintf(stderr, "[bendable] chain %d ra %d parent %d: %s\n", ch.index, c.segment.rivet_area, c.segment.parent,
+                 bendable.ok ? "ok" : bendable.message.c_str());
+  if (bendable.ok) return true;
+  ++ch.stats.press_rejected;
+  ++ch.stats.press_rejected_per_ra[c.segment.rivet_area];
+  return false;
+}
+
 // End of a chain's round: decide which of its connections are optimised and queued.
 void select_for_library(Chain& ch, const Context& cx, const SegmentLibrary& snapshot) {
   std::vector<Candidate> found = std::move(ch.found);
@@ -556,7 +574,7 @@ void select_for_library(Chain& ch, const Context& cx, const SegmentLibrary& snap
             if (segment_distance(q.segment, c.segment) < cx.o.library.duplicate_distance) r.outcome = Admission::Rejected;
         }
         if (r.outcome == Admission::Admitted || r.outcome == Admission::Replaced) {
-          if (optimise(c, cx, ch)) ch.queue.push_back(std::move(c));
+          if (ready_to_offer(c, cx, ch, snapshot)) ch.queue.push_back(std::move(c));
         } else if (r.outcome == Admission::Full) {
           ++ch.stats.full;
         } else {
@@ -567,7 +585,7 @@ void select_for_library(Chain& ch, const Context& cx, const SegmentLibrary& snap
     case SegmentPolicy::Greedy:
       for (auto& c : found) {
         if (full(c)) { ++ch.stats.full; continue; }
-        if (optimise(c, cx, ch)) ch.queue.push_back(std::move(c));
+        if (ready_to_offer(c, cx, ch, snapshot)) ch.queue.push_back(std::move(c));
       }
       break;
     case SegmentPolicy::Uniform: {
@@ -575,7 +593,7 @@ void select_for_library(Chain& ch, const Context& cx, const SegmentLibrary& snap
       Candidate& c = found[ch.rng.index(static_cast<int>(found.size()))];
       ch.stats.rejected += static_cast<long long>(found.size()) - 1;
       if (full(c)) { ++ch.stats.full; break; }
-      if (optimise(c, cx, ch)) ch.queue.push_back(std::move(c));
+      if (ready_to_offer(c, cx, ch, snapshot)) ch.queue.push_back(std::move(c));
       break;
     }
   }
@@ -607,14 +625,7 @@ void freeze(Chain& ch, const Segment& s, int feeler_tag) {
   out.load = ch.part.load;
   out.base = ch.part.base;
   out.tabs.assign(ch.part.tabs.begin(), ch.part.tabs.begin() + ch.frozen);
-  const int first = out.size();
-  for (size_t k = 0; k < s.tabs.size(); ++k) {
-    Tab t = s.tabs[k];
-    if (k == 0) { t.parent = attach; t.parent_edge = s.parent_edge; }
-    else t.parent += first;
-    t.tag = s.id;
-    out.tabs.push_back(t);
-  }
+  append_segment_tabs(out.tabs, s, attach, s.id);
   const int shift = static_cast<int>(s.tabs.size());
   for (int i = ch.frozen; i < ch.part.size(); ++i) {
     Tab t = ch.part.tabs[i];
@@ -652,7 +663,7 @@ std::vector<Chain> start_chains(const Context& cx, const Part& base) {
     chains[c].realised = realise(chains[c].part);
     chains[c].f = o.target.empty_likelihood;
     for (auto* v : {&chains[c].stats.found_per_ra, &chains[c].stats.optimised_per_ra, &chains[c].stats.failed_per_ra,
-                    &chains[c].stats.admitted_per_ra})
+                    &chains[c].stats.press_rejected_per_ra, &chains[c].stats.admitted_per_ra})
       v->assign(cx.nra, 0);
   }
   return chains;
@@ -737,9 +748,11 @@ void add_chain_stats(DiscoveryStats& t, const DiscoveryStats& s) {
   t.jumps += s.jumps; t.jumps_accepted += s.jumps_accepted;
   t.diffusions += s.diffusions; t.diffusions_accepted += s.diffusions_accepted;
   t.candidates += s.candidates; t.optimised += s.optimised; t.optimise_failed += s.optimise_failed;
+  t.press_rejected += s.press_rejected;
   t.admitted += s.admitted; t.replaced += s.replaced; t.rejected += s.rejected; t.full += s.full;
   add_counts(t.found_per_ra, s.found_per_ra); add_counts(t.optimised_per_ra, s.optimised_per_ra);
   add_counts(t.failed_per_ra, s.failed_per_ra); add_counts(t.admitted_per_ra, s.admitted_per_ra);
+  add_counts(t.press_rejected_per_ra, s.press_rejected_per_ra);
 }
 
 }  // namespace
@@ -754,6 +767,7 @@ DiscoveryResult discover_segments(const Problem& problem, const Environment& env
   DiscoveryResult result;
   result.library = SegmentLibrary(o.library);
   result.base = make_base_part(problem.loads[load_index], load_index, cx.spec.thickness);
+  cx.base = &result.base;
   std::vector<Chain> chains = start_chains(cx, result.base);
   if (o.web_roots) add_web_roots(result, chains, cx);
   if (progress) {

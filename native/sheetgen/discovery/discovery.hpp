@@ -75,12 +75,14 @@ struct DiscoveryStats {
   long long candidates = 0;   // connections found in accepted states
   long long optimised = 0;    // candidates that went through geometry optimisation
   long long optimise_failed = 0;  // optimised segment invalid or not unfoldable: dropped
+  long long press_rejected = 0;   // optimised segment the press brake cannot bend (bendable.hpp): dropped
   long long admitted = 0, replaced = 0, rejected = 0, full = 0;
   int rounds = 0;
   double seconds = 0;
   std::vector<int> per_rivet_area;  // library segments per rivet area at the end
-  // per rivet area: connections found (accepted states), optimised, optimisation failed, admitted
-  std::vector<long long> found_per_ra, optimised_per_ra, failed_per_ra, admitted_per_ra;
+  // per rivet area: connections found (accepted states), optimised, optimisation failed,
+  // not bendable (press_rejected), admitted
+  std::vector<long long> found_per_ra, optimised_per_ra, failed_per_ra, press_rejected_per_ra, admitted_per_ra;
   double acceptance_rate() const {
     const long long n = jumps + diffusions;
     return n ? static_cast<double>(jumps_accepted + diffusions_accepted) / n : 0.0;

@@ -152,16 +152,40 @@ Part assemble_part(const Part& base, const SegmentLibrary& library, std::vector<
                                     std::to_string(s->parent) + ", which is not in the subset");
       attach = it->second + s->parent_tab;
     }
-    const int first = part.size();
-    first_index[id] = first;
-    for (size_t k = 0; k < s->tabs.size(); ++k) {
-      Tab t = s->tabs[k];
-      if (k == 0) { t.parent = attach; t.parent_edge = s->parent_edge; }
-      else t.parent += first;
-      t.tag = id;
-      part.tabs.push_back(t);
-    }
+    first_index[id] = part.size();
+    append_segment_tabs(part.tabs, *s, attach, id);
   }
+  return part;
+}
+
+void append_segment_tabs(std::vector<Tab>& tabs, const Segment& segment, int attach, int tag) {
+  const int first = static_cast<int>(tabs.size());
+  for (size_t k = 0; k < segment.tabs.size(); ++k) {
+    Tab t = segment.tabs[k];
+    if (k == 0) { t.parent = attach; t.parent_edge = segment.parent_edge; }
+    else t.parent += first;
+    t.tag = tag;
+    tabs.push_back(t);
+  }
+}
+
+std::vector<int> segment_closure(const SegmentLibrary& library, int id) {
+  std::vector<int> out;
+  for (const Segment* s = library.find(id); s; s = s->parent >= 0 ? library.find(s->parent) : nullptr) out.push_back(s->id);
+  std::sort(out.begin(), out.end());
+  return out;
+}
+
+Part assemble_with(const Part& base, const SegmentLibrary& library, const Segment& segment) {
+  Part part = assemble_part(base, library, segment.parent >= 0 ? segment_closure(library, segment.parent) : std::vector<int>{});
+  int attach = 0;
+  if (segment.parent >= 0) {
+    const auto first = std::find_if(part.tabs.begin(), part.tabs.end(), [&](const Tab& t) { return t.tag == segment.parent; });
+    if (first == part.tabs.end())
+      throw std::invalid_argument("assemble_with: parent segment " + std::to_string(segment.parent) + " is not in the library");
+    attach = static_cast<int>(first - part.tabs.begin()) + segment.parent_tab;
+  }
+  append_segment_tabs(part.tabs, segment, attach, segment.id);
   return part;
 }
 

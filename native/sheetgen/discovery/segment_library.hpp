@@ -108,4 +108,16 @@ class SegmentLibrary {
 // tag = segment id. Parents come first (ids are admitted after their parents).
 Part assemble_part(const Part& base, const SegmentLibrary& library, std::vector<int> ids);
 
+// Appends the tabs of `segment` to `tabs`, its first tab hanging from tab
+// `attach` (an index into `tabs`), each tagged `tag`.
+void append_segment_tabs(std::vector<Tab>& tabs, const Segment& segment, int attach, int tag);
+
+// Segment `id` with all its ancestors, sorted (a subset closed under parents).
+std::vector<int> segment_closure(const SegmentLibrary& library, int id);
+
+// `base` plus a segment not (yet) in the library and its ancestors, which
+// are: what discovery checks before it offers the segment. The new
+// segment's tabs get tag = segment.id.
+Part assemble_with(const Part& base, const SegmentLibrary& library, const Segment& segment);
+
 }  // namespace sheetgen

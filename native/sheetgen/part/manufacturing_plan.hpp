@@ -40,6 +40,13 @@ struct ManufacturingPlan {
 
 ManufacturingPlan plan_manufacturing(const Part& part, const SheetSpec& spec, const ManufacturingPlanOptions& options = {});
 
+// The order search's budget when a search checks many parts (composition's
+// candidates, discovery's segments): a quarter of the answer's
+// (ManufacturingPlanOptions::press_brake_sweeps), because the search pays it on
+// every part it checks; the part-only order is checked first and passes for
+// most parts.
+constexpr int kSearchPressBrakeSweeps = 50;
+
 // The press-brake step of a plan whose bend sequence is ok: `tooling` drawn
 // for the sheet (plan.tools), and plan.press. The part-only order is kept when the tools
 // make each of its bends; otherwise the bend-sequence search runs again, taking

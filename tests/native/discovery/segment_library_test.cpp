@@ -93,5 +93,34 @@ TEST(SegmentLibrary, AssemblePartNeedsParents) {
   EXPECT_EQ(part.tabs[3].tag, c);
 }
 
+// A segment not yet in the library, assembled with its ancestors, is the part
+// assemble_part makes once it is admitted (it gets the largest id, so its tabs
+// come last either way).
+TEST(SegmentLibrary, AssembleWithMatchesTheAdmittedSegment) {
+  const Problem p = testing_scenes::base_problem();
+  const Part base = make_base_part(p.loads[0], 0, 1.6e-3);
+  SegmentLibrary lib;
+  const int r = lib.add(crafted(0, 0, 2)).id;
+  lib.add(crafted(0.2, 1, 2));  // a sibling: not an ancestor, not assembled
+  Segment child = crafted(0.5, 1, 2);
+  child.parent = r;
+  child.parent_tab = 1;
+  child.parent_edge = kEndSideEdge;
+  const Part before = assemble_with(base, lib, child);
+  const int c = lib.add(child).id;
+  EXPECT_EQ(segment_closure(lib, c), (std::vector<int>{r, c}));
+  const Part after = assemble_part(base, lib, segment_closure(lib, c));
+  ASSERT_EQ(before.size(), 5);
+  ASSERT_EQ(after.size(), before.size());
+  for (int i = 0; i < before.size(); ++i) {
+    EXPECT_EQ(before.tabs[i].parent, after.tabs[i].parent) << "tab " << i;
+    EXPECT_EQ(before.tabs[i].parent_edge, after.tabs[i].parent_edge) << "tab " << i;
+  }
+  // A root segment hangs from the base tab.
+  const Part root_only = assemble_with(base, lib, crafted(0.9, 2, 1));
+  ASSERT_EQ(root_only.size(), 2);
+  EXPECT_EQ(root_only.tabs[1].parent, 0);
+}
+
 }  // namespace
 }  // namespace sheetgen
