@@ -31,7 +31,6 @@ std::string key_of(const std::vector<int>& ids) {
   return k;
 }
 
-
 std::vector<int> unite(const std::vector<int>& a, const std::vector<int>& b) {
   std::vector<int> out;
   std::set_union(a.begin(), a.end(), b.begin(), b.end(), std::back_inserter(out));
