@@ -7,12 +7,16 @@ its one die keeps only flanges 50 V = 640 mm long, longer than any tab. Then
   the check, and answers that search's part, marked `press_fallback`, with
   the failing bend in `press_brake.message`;
 * that part is the one "report" answers (the same search, the same seed);
-* "require" answers no valid part, and says the press brake is why;
+* "require" answers no valid part, and says the press brake is why: its
+  discovery dropped every connection (docs/discovery.md "Press-brake filter"),
+  and the reason names the flange too short for the die;
 * with the standard tools, "prefer" needs no fallback: the shelf's part bends;
-* `press_rejected` counts the candidates the check dropped: none under
-  "report" (the search never checks), some under "require" on the press brake
-  that bends nothing, and "prefer" counts the same (its checked passes are
-  the "require" search; the fallback checks nothing).
+* `press_rejected_segments` counts the segments discovery's filter dropped and
+  `press_rejected` the candidates the composition's check dropped: both none
+  under "report" (the search never checks); under "require", on the press brake
+  that bends nothing, the filter drops every segment, so no candidate is left
+  for the composition to drop; "prefer" counts the same (its checked passes
+  are the "require" search; the fallback checks nothing).
 
 Run: PYTHONPATH=tools /usr/bin/python3 tests/python/test_press_brake_use.py --sheetgen build/native/cli/sheetgen
 """
@@ -82,6 +86,7 @@ class PressBrakeUse(unittest.TestCase):
         self.assertNotEqual(part["status"], "ok")
         self.assertFalse(part["press_fallback"])
         self.assertIn("press brake", part["reason"])
+        self.assertIn("flange", part["reason"])
 
     def test_standard_tools_need_no_fallback(self):
         part = self.runs["standard"]
@@ -90,9 +95,11 @@ class PressBrakeUse(unittest.TestCase):
         self.assertTrue(part["press_brake"]["ok"], part["press_brake"]["message"])
 
     def test_press_rejected_counts_the_checked_passes_alone(self):
-        self.assertEqual(self.runs["report"]["press_rejected"], 0)
-        self.assertGreater(self.runs["require"]["press_rejected"], 0)
-        self.assertEqual(self.runs["prefer"]["press_rejected"], self.runs["require"]["press_rejected"])
+        for counter in ("press_rejected", "press_rejected_segments"):
+            self.assertEqual(self.runs["report"][counter], 0, counter)
+            self.assertEqual(self.runs["prefer"][counter], self.runs["require"][counter], counter)
+        self.assertGreater(self.runs["require"]["press_rejected_segments"], 0)
+        self.assertEqual(self.runs["require"]["press_rejected"], 0)
 
 
 if __name__ == "__main__":

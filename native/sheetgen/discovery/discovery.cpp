@@ -555,6 +555,7 @@ bool ready_to_offer(Candidate& c, const Context& cx, Chain& ch, const SegmentLib
   if (bendable.ok) return true;
   ++ch.stats.press_rejected;
   ++ch.stats.press_rejected_per_ra[c.segment.rivet_area];
+  if (ch.stats.press_example.empty()) ch.stats.press_example = bendable.message;
   return false;
 }
 
@@ -749,6 +750,7 @@ void add_chain_stats(DiscoveryStats& t, const DiscoveryStats& s) {
   t.diffusions += s.diffusions; t.diffusions_accepted += s.diffusions_accepted;
   t.candidates += s.candidates; t.optimised += s.optimised; t.optimise_failed += s.optimise_failed;
   t.press_rejected += s.press_rejected;
+  if (t.press_example.empty()) t.press_example = s.press_example;
   t.admitted += s.admitted; t.replaced += s.replaced; t.rejected += s.rejected; t.full += s.full;
   add_counts(t.found_per_ra, s.found_per_ra); add_counts(t.optimised_per_ra, s.optimised_per_ra);
   add_counts(t.failed_per_ra, s.failed_per_ra); add_counts(t.admitted_per_ra, s.admitted_per_ra);

@@ -8,6 +8,7 @@
 #include <atomic>
 #include <cstdint>
 #include <vector>
+#include <string>
 
 #include "sheetgen/discovery/feeler.hpp"
 #include "sheetgen/discovery/segment_library.hpp"
@@ -76,6 +77,7 @@ struct DiscoveryStats {
   long long optimised = 0;    // candidates that went through geometry optimisation
   long long optimise_failed = 0;  // optimised segment invalid or not unfoldable: dropped
   long long press_rejected = 0;   // optimised segment the press brake cannot bend (bendable.hpp): dropped
+  std::string press_example;      // why the first of those (in chain order) cannot be bent
   long long admitted = 0, replaced = 0, rejected = 0, full = 0;
   int rounds = 0;
   double seconds = 0;

@@ -80,6 +80,7 @@ struct LoadOutcome {
   // part, so the load was searched again without it, and the answer comes from that search.
   bool press_fallback = false;
   int press_rejected = 0;            // candidates the press-brake check rejected (not analysed), over every pass
+  long long press_rejected_segments = 0;  // segments discovery's press-brake filter dropped, over every pass
   double environment_seconds = 0, discovery_seconds = 0, composition_seconds = 0, total_seconds = 0;
 };
 

@@ -106,6 +106,7 @@ void add_search_fields(json& p, const LoadOutcome& o) {
   p["seed_retry"] = o.seed_retry;
   p["press_fallback"] = o.press_fallback;
   p["press_rejected"] = o.press_rejected;
+  p["press_rejected_segments"] = o.press_rejected_segments;
   p["timing"] = {{"environment_s", o.environment_seconds}, {"discovery_s", o.discovery_seconds},
                  {"composition_s", o.composition_seconds}, {"total_s", o.total_seconds}};
 }

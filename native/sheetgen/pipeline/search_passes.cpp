@@ -122,6 +122,21 @@ bool compose_and_check(const Problem& scene, const Environment& env, int li, con
   return true;
 }
 
+// Discovery reached rivet areas, but its press-brake filter dropped every
+// connection (docs/discovery.md "Press-brake filter"): the library holds no
+// segment that ends on a rivet area.
+bool unbendable_library(const DiscoveryResult& found) {
+  if (found.stats.press_rejected == 0) return false;
+  const auto& segs = found.library.segments();
+  return std::none_of(segs.begin(), segs.end(), [](const Segment& s) { return s.rivet_area >= 0; });
+}
+
+// The reason of such a load: what the tools could not do to its connections.
+std::string no_bendable_segment(const DiscoveryResult& found) {
+  return "no segment the press brake's tools can bend reached a rivet area: discovery dropped " +
+         std::to_string(found.stats.press_rejected) + " that reached one (e.g. " + found.stats.press_example + ")";
+}
+
 // One search for one load: discovery, then composition and the final check.
 // Fills the search's fields of `out` (answer or closest candidate, reason,
 // statistics, history, times); false when it was cancelled.
@@ -141,8 +156,10 @@ bool search_pass(const Problem& scene, const Environment& env, int li, const Gen
   out.library_size = found.library.size();
   if (found.cancelled || cancel_requested(progress)) return false;
 
+  out.press_rejected_segments = found.stats.press_rejected;
   if (progress) progress->stage = static_cast<int>(Stage::Composition);
   const bool finished = compose_and_check(scene, env, li, found, options, web_roots, progress, out);
+  if (finished && !out.ok && unbendable_library(found)) out.reason = no_bendable_segment(found);
   if (std::getenv("SHEETGEN_COMPOSE_DEBUG"))  // where a load's time goes, pass by pass
     std::fprintf(stderr, "[pass] %s web %d flat %d press %d seed %llu: discovery %.1f s, composition %.1f s, %d analyses, %s\n",
                  out.load.c_str(), web_roots, scene.manufacturing.flat_extensions, scene.manufacturing.press_brake_required,
@@ -183,12 +200,14 @@ bool merge_pass(LoadOutcome& best, LoadOutcome&& pass, const Problem& scene) {
   const double composition_s = best.composition_seconds + pass.composition_seconds;
   const int fem_calls = best.fem_calls + pass.fem_calls;
   const int press_rejected = best.press_rejected + pass.press_rejected;
+  const long long press_rejected_segments = best.press_rejected_segments + pass.press_rejected_segments;
   const bool keep = pass.ok || closer(pass.part, best.part, scene);
   if (keep) best = std::move(pass);
   best.discovery_seconds = discovery_s;
   best.composition_seconds = composition_s;
   best.fem_calls = fem_calls;
   best.press_rejected = press_rejected;
+  best.press_rejected_segments = press_rejected_segments;
   return keep;
 }
 
