@@ -74,8 +74,9 @@ int main(int argc, char** argv) {
         for (long long c : x) s += " " + std::to_string(c);
         return s;
       };
-      std::fprintf(stderr, "%s seed %s: found%s | optimised%s | failed%s | admitted%s | jumps %lld acc %.2f\n", p.name, argv[a],
-                   v(r.stats.found_per_ra).c_str(), v(r.stats.optimised_per_ra).c_str(), v(r.stats.failed_per_ra).c_str(),
+      std::fprintf(stderr, "%s seed %s: found%s | optimised%s | failed%s | not bendable%s | admitted%s | jumps %lld acc %.2f\n",
+                   p.name, argv[a], v(r.stats.found_per_ra).c_str(), v(r.stats.optimised_per_ra).c_str(),
+                   v(r.stats.failed_per_ra).c_str(), v(r.stats.press_rejected_per_ra).c_str(),
                    v(r.stats.admitted_per_ra).c_str(), r.stats.jumps, r.stats.acceptance_rate());
       std::fflush(stdout);
     }
