@@ -132,6 +132,48 @@ void SegmentLibrary::compact() {
   next_id_ = static_cast<int>(segments_.size());
 }
 
+namespace {
+
+// The same segment found twice (web roots are built without random numbers,
+// so every pass makes the same ones): same attachment, edges, raw features
+// and area.
+bool same_segment(const Segment& a, const Segment& b, int b_parent) {
+  constexpr double eps = 1e-9;  // m
+  return a.parent == b_parent && a.parent_tab == b.parent_tab && a.parent_edge == b.parent_edge &&
+         a.rivet_area == b.rivet_area && a.tabs.size() == b.tabs.size() && (a.root_a - b.root_a).norm() < eps &&
+         (a.root_b - b.root_b).norm() < eps && (a.connect_a - b.connect_a).norm() < eps &&
+         (a.connect_b - b.connect_b).norm() < eps && segment_distance(a, b) < eps && std::abs(a.area - b.area) < eps * eps;
+}
+
+}  // namespace
+
+int SegmentLibrary::absorb(const SegmentLibrary& other) {
+  if (segments_.empty()) {  // a first search composes exactly its own library
+    *this = other;
+    return size();
+  }
+  std::map<int, int> remap;  // other's id -> id here
+  int copied = 0;
+  for (const Segment& s : other.segments()) {  // id order: parents first
+    const int parent = s.parent >= 0 ? remap.at(s.parent) : -1;
+    auto same = std::find_if(segments_.begin(), segments_.end(),
+                             [&](const Segment& o) { return same_segment(o, s, parent); });
+    if (same != segments_.end()) {
+      remap[s.id] = same->id;
+      continue;
+    }
+    if (s.rivet_area >= 0 && !other.has_children(s.id) && distance_to_library(s) < options_.duplicate_distance)
+      continue;
+    Segment c = s;
+    c.id = next_id_++;
+    c.parent = parent;
+    remap[s.id] = c.id;
+    segments_.push_back(std::move(c));
+    ++copied;
+  }
+  return copied;
+}
+
 Part assemble_part(const Part& base, const SegmentLibrary& library, std::vector<int> ids) {
   if (base.tabs.empty()) throw std::invalid_argument("assemble_part: base part has no base tab");
   std::sort(ids.begin(), ids.end());

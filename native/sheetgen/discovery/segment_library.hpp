@@ -96,6 +96,16 @@ class SegmentLibrary {
   // Renumbers ids 0..n-1 in id order, remapping parents.
   void compact();
 
+  // Pools the segments of `other` (a library of the same base, e.g. another
+  // seed's discovery) into this one, its parents before its children, with
+  // new ids (docs/pipeline.md, step 4d). A segment identical to one here (same
+  // parent, edges, features, area) is not copied: its children hang from the one
+  // here. A childless connection closer than duplicate_distance to one here
+  // is left out, as admission would. The per-area cap does not apply: a pool
+  // of k libraries holds up to k times it. Into an empty library, `other` is
+  // copied as it is (ids and options). Returns the segments copied.
+  int absorb(const SegmentLibrary& other);
+
  private:
   LibraryOptions options_;
   std::vector<Segment> segments_;

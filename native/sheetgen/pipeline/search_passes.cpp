@@ -81,13 +81,14 @@ struct FinalCheck {
 
 // Composition of the discovered library and the final check of its valid
 // parts; fills the composition's fields of `out`. False when cancelled.
-bool compose_and_check(const Problem& scene, const Environment& env, int li, const DiscoveryResult& found,
-                       const GenerateOptions& options, bool web_roots, GenerateProgress* progress, LoadOutcome& out) {
+bool compose_and_check(const Problem& scene, const Environment& env, int li, const Part& base,
+                       const SegmentLibrary& library, const GenerateOptions& options, bool web_roots,
+                       GenerateProgress* progress, LoadOutcome& out) {
   ComposeOptions copt = options.compose;
   copt.beam_width = scene.search.beam_width;
   copt.threads = scene.search.threads;
   const auto t0 = std::chrono::steady_clock::now();
-  ComposeResult composed = compose_part(scene, env, li, found.base, found.library, copt, compose_progress(progress));
+  ComposeResult composed = compose_part(scene, env, li, base, library, copt, compose_progress(progress));
   if (composed.cancelled || cancel_requested(progress)) return false;
   FinalCheck check{scene, env, li, web_roots, {}, {}};
   check.run(composed.valid, out);
@@ -101,7 +102,7 @@ bool compose_and_check(const Problem& scene, const Environment& env, int li, con
   if (!out.ok && composed.skipped_by_cost > 0) {
     ComposeOptions unbounded = copt;
     unbounded.kept_valid = 0;
-    ComposeResult again = compose_part(scene, env, li, found.base, found.library, unbounded, compose_progress(progress));
+    ComposeResult again = compose_part(scene, env, li, base, library, unbounded, compose_progress(progress));
     if (again.cancelled || cancel_requested(progress)) return false;
     out.fem_calls += composed.fem_calls;
     out.screen_fem_calls += again.screen_fem_calls;
@@ -125,9 +126,9 @@ bool compose_and_check(const Problem& scene, const Environment& env, int li, con
 // Discovery reached rivet areas, but its press-brake filter dropped every
 // connection (docs/discovery.md "Press-brake filter"): the library holds no
 // segment that ends on a rivet area.
-bool unbendable_library(const DiscoveryResult& found) {
+bool unbendable_library(const DiscoveryResult& found, const SegmentLibrary& pool) {
   if (found.stats.press_rejected == 0) return false;
-  const auto& segs = found.library.segments();
+  const auto& segs = pool.segments();
   return std::none_of(segs.begin(), segs.end(), [](const Segment& s) { return s.rivet_area >= 0; });
 }
 
@@ -139,9 +140,11 @@ std::string no_bendable_segment(const DiscoveryResult& found) {
 
 // One search for one load: discovery, then composition and the final check.
 // Fills the search's fields of `out` (answer or closest candidate, reason,
-// statistics, history, times); false when it was cancelled.
+// statistics, history, times); false when it was cancelled. The discovered
+// segments join `pool`, and composition runs on the whole pool: empty for a
+// first search, the earlier searches' segments for a retry (step 4d).
 bool search_pass(const Problem& scene, const Environment& env, int li, const GenerateOptions& options, bool web_roots,
-                 GenerateProgress* progress, LoadOutcome& out) {
+                 GenerateProgress* progress, LoadOutcome& out, SegmentLibrary& pool) {
   out.web_roots = web_roots;
   if (progress) {
     progress->web_roots = web_roots;
@@ -153,13 +156,14 @@ bool search_pass(const Problem& scene, const Environment& env, int li, const Gen
   const DiscoveryResult found = discover_segments(scene, env, li, dopt, progress ? &progress->discovery : nullptr);
   out.discovery_seconds = seconds_since(t0);
   out.discovery = found.stats;
-  out.library_size = found.library.size();
   if (found.cancelled || cancel_requested(progress)) return false;
+  pool.absorb(found.library);
+  out.library_size = pool.size();
 
   out.press_rejected_segments = found.stats.press_rejected;
   if (progress) progress->stage = static_cast<int>(Stage::Composition);
-  const bool finished = compose_and_check(scene, env, li, found, options, web_roots, progress, out);
-  if (finished && !out.ok && unbendable_library(found)) out.reason = no_bendable_segment(found);
+  const bool finished = compose_and_check(scene, env, li, found.base, pool, options, web_roots, progress, out);
+  if (finished && !out.ok && unbendable_library(found, pool)) out.reason = no_bendable_segment(found);
   if (std::getenv("SHEETGEN_COMPOSE_DEBUG"))  // where a load's time goes, pass by pass
     std::fprintf(stderr, "[pass] %s web %d flat %d press %d seed %llu: discovery %.1f s, composition %.1f s, %d analyses, %s\n",
                  out.load.c_str(), web_roots, scene.manufacturing.flat_extensions, scene.manufacturing.press_brake_required,
@@ -223,16 +227,20 @@ Problem retry_scene_of(const Problem& scene, int k) {
 // the pass whose candidate came nearest to valid again (its roots and grammar)
 // with a fresh seed, up to options.seed_retries times. Which part a search
 // finds depends on its seed: a load that one seed leaves without a part,
-// another often solves. Only loads without a part pay for them.
+// another often solves. Each retry composes its own segments pooled with
+// those of the searches before it in that grammar, so a part may join
+// connections that different seeds found. Only loads without a part pay for
+// them.
 void retry_with_fresh_seeds(const Problem& scene, const Environment& env, int li, const LoadOutcome& start,
                             const GenerateOptions& options, GenerateProgress* progress, LoadSearch& s) {
   LoadOutcome& best = s.answer;
+  SegmentLibrary& pool = s.library;  // a retry searches the kept pass's roots and grammar
   for (int k = 1; k <= options.seed_retries && s.finished && !best.ok && !cancel_requested(progress); ++k) {
     const bool web_roots = best.web_roots, flat = s.flat_scene.has_value();
     Problem retry_scene = retry_scene_of(flat ? *s.flat_scene : scene, k);
     LoadOutcome retry = start;
     if (progress) progress->flat_pass = flat;
-    s.finished = search_pass(retry_scene, env, li, options, web_roots, progress, retry);
+    s.finished = search_pass(retry_scene, env, li, options, web_roots, progress, retry, pool);
     if (progress) progress->flat_pass = false;
     retry.web_pass_tried = best.web_pass_tried;
     retry.flat_pass_tried = best.flat_pass_tried;
@@ -255,12 +263,13 @@ LoadSearch search_passes(const Problem& scene, const Environment& env, int li, c
   // Discovery and composition; when that finds no valid part, once more with
   // web roots (docs/discovery.md "Web roots"): the plates of the first pass
   // may be too soft where the way to the rivet areas is narrow.
-  s.finished = search_pass(scene, env, li, options, /*web_roots=*/false, progress, first);
+  s.finished = search_pass(scene, env, li, options, /*web_roots=*/false, progress, first, s.library);
   if (s.finished && !first.ok && options.web_fallback && !cancel_requested(progress)) {
     LoadOutcome webbed = start;
-    s.finished = search_pass(scene, env, li, options, /*web_roots=*/true, progress, webbed);
+    SegmentLibrary pool;
+    s.finished = search_pass(scene, env, li, options, /*web_roots=*/true, progress, webbed, pool);
     webbed.web_pass_tried = first.web_pass_tried = true;
-    merge_pass(first, std::move(webbed), scene);
+    if (merge_pass(first, std::move(webbed), scene)) s.library = std::move(pool);
   }
   // Still nothing: once more with flat extensions (a tab may continue its
   // parent flat). Measured on the bay's data_recorder (docs/pipeline.md): the
@@ -270,12 +279,16 @@ LoadSearch search_passes(const Problem& scene, const Environment& env, int li, c
     Problem flat_scene = scene;
     flat_scene.manufacturing.flat_extensions = true;
     LoadOutcome flat = start;
+    SegmentLibrary pool;
     if (progress) progress->flat_pass = true;
-    s.finished = search_pass(flat_scene, env, li, options, /*web_roots=*/false, progress, flat);
+    s.finished = search_pass(flat_scene, env, li, options, /*web_roots=*/false, progress, flat, pool);
     if (progress) progress->flat_pass = false;
     flat.web_pass_tried = first.web_pass_tried;
     flat.flat_pass_tried = first.flat_pass_tried = flat.flat_pass = true;
-    if (merge_pass(first, std::move(flat), scene)) s.flat_scene = std::move(flat_scene);
+    if (merge_pass(first, std::move(flat), scene)) {
+      s.flat_scene = std::move(flat_scene);
+      s.library = std::move(pool);
+    }
   }
   retry_with_fresh_seeds(scene, env, li, start, options, progress, s);
   return s;

@@ -9,6 +9,7 @@
 #include <optional>
 
 #include "sheetgen/core/problem.hpp"
+#include "sheetgen/discovery/segment_library.hpp"
 #include "sheetgen/pipeline/generate.hpp"
 
 namespace sheetgen {
@@ -21,6 +22,9 @@ struct LoadSearch {
   // The scene of the flat-extension search when the answer comes from it: the
   // answer's plan and structural model use that grammar too.
   std::optional<Problem> flat_scene;
+  // The segments the answer's search composed; its seed retries pool theirs
+  // into these (docs/pipeline.md, step 4d).
+  SegmentLibrary library;
 };
 
 // `start` holds the load's fields known before the search (name, environment

@@ -122,5 +122,47 @@ TEST(SegmentLibrary, AssembleWithMatchesTheAdmittedSegment) {
   EXPECT_EQ(root_only.tabs[1].parent, 0);
 }
 
+// Pooling two libraries (a seed retry, docs/pipeline.md step 4d): a copy into
+// an empty pool keeps the ids; then the other library's segments come with new
+// ids and their parents remapped, an identical segment (a web root every pass
+// builds alike) is shared with its children hanging from the pooled one, and a
+// childless near-duplicate connection is left out.
+TEST(SegmentLibrary, AbsorbPoolsAnotherLibrary) {
+  LibraryOptions o;
+  o.max_per_rivet_area = 2;  // the cap is the admission's, not the pool's
+  SegmentLibrary first(o), second(o), pool;
+  Segment web = crafted(0, -1, 1);
+  web.root_a = Vec3(0, 0, 0);
+  web.root_b = Vec3(0.1, 0, 0);
+  const int w = first.add(web).id;
+  Segment a = crafted(0.3, 0, 1);
+  a.parent = w;
+  first.add(a);
+  first.add(crafted(0.6, 0, 1));
+
+  const int w2 = second.add(web).id;           // the same web root
+  Segment b = crafted(1.0, 0, 1);              // far from every segment of `first`
+  b.parent = w2;
+  const int b_id = second.add(b).id;
+  second.add(crafted(0.605, 0, 2));            // 1 cm from `first`'s third: a near-duplicate
+  Segment grandchild = crafted(1.5, 1, 1);
+  grandchild.parent = b_id;
+  second.add(grandchild);
+
+  EXPECT_EQ(pool.absorb(first), 3);
+  EXPECT_EQ(pool.options().max_per_rivet_area, 2);
+  for (int i = 0; i < 3; ++i) EXPECT_EQ(pool.segments()[i].id, first.segments()[i].id);
+  EXPECT_EQ(pool.absorb(second), 2);  // b and its child; the web root is shared, the duplicate left out
+  ASSERT_EQ(pool.size(), 5);
+  const Segment& pb = pool.segments()[3];
+  const Segment& pg = pool.segments()[4];
+  EXPECT_EQ(pb.id, 3);
+  EXPECT_EQ(pb.parent, w);  // hangs from the pooled web root
+  EXPECT_DOUBLE_EQ(pb.raw_root_mid.x(), 1.0);
+  EXPECT_EQ(pg.parent, pb.id);
+  EXPECT_EQ(pool.counts_per_rivet_area(2), (std::vector<int>{3, 1}));  // over the cap of 2
+  EXPECT_EQ(segment_closure(pool, pg.id), (std::vector<int>{w, 3, 4}));
+}
+
 }  // namespace
 }  // namespace sheetgen
