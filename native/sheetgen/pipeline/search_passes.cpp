@@ -138,40 +138,6 @@ std::string no_bendable_segment(const DiscoveryResult& found) {
          std::to_string(found.stats.press_rejected) + " that reached one (e.g. " + found.stats.press_example + ")";
 }
 
-// One search for one load: discovery, then composition and the final check.
-// Fills the search's fields of `out` (answer or closest candidate, reason,
-// statistics, history, times); false when it was cancelled. The discovered
-// segments join `pool`, and composition runs on the whole pool: empty for a
-// first search, the earlier searches' segments for a retry (step 4d).
-bool search_pass(const Problem& scene, const Environment& env, int li, const GenerateOptions& options, bool web_roots,
-                 GenerateProgress* progress, LoadOutcome& out, SegmentLibrary& pool) {
-  out.web_roots = web_roots;
-  if (progress) {
-    progress->web_roots = web_roots;
-    progress->stage = static_cast<int>(Stage::Discovery);
-  }
-  DiscoveryOptions dopt = DiscoveryOptions::from(scene);
-  dopt.web_roots = web_roots;
-  const auto t0 = std::chrono::steady_clock::now();
-  const DiscoveryResult found = discover_segments(scene, env, li, dopt, progress ? &progress->discovery : nullptr);
-  out.discovery_seconds = seconds_since(t0);
-  out.discovery = found.stats;
-  if (found.cancelled || cancel_requested(progress)) return false;
-  pool.absorb(found.library);
-  out.library_size = pool.size();
-
-  out.press_rejected_segments = found.stats.press_rejected;
-  if (progress) progress->stage = static_cast<int>(Stage::Composition);
-  const bool finished = compose_and_check(scene, env, li, found.base, pool, options, web_roots, progress, out);
-  if (finished && !out.ok && unbendable_library(found, pool)) out.reason = no_bendable_segment(found);
-  if (std::getenv("SHEETGEN_COMPOSE_DEBUG"))  // where a load's time goes, pass by pass
-    std::fprintf(stderr, "[pass] %s web %d flat %d press %d seed %llu: discovery %.1f s, composition %.1f s, %d analyses, %s\n",
-                 out.load.c_str(), web_roots, scene.manufacturing.flat_extensions, scene.manufacturing.press_brake_required,
-                 static_cast<unsigned long long>(scene.search.seed), out.discovery_seconds, out.composition_seconds,
-                 out.fem_calls, out.ok ? "valid part" : "no part");
-  return finished;
-}
-
 // Of two answers without a valid part, is `a` nearer to valid than `b`? An
 // analysed candidate beats one that is not; then the larger of the compliance
 // and strength ratios (how far over the limits) decides.
@@ -213,6 +179,54 @@ bool merge_pass(LoadOutcome& best, LoadOutcome&& pass, const Problem& scene) {
   best.press_rejected = press_rejected;
   best.press_rejected_segments = press_rejected_segments;
   return keep;
+}
+
+// One search for one load: discovery, then composition and the final check.
+// Fills the search's fields of `out` (answer or closest candidate, reason,
+// statistics, history, times); false when it was cancelled. The discovered
+// segments join `pool`. A first search (empty pool) composes its library. A
+// retry composes its own library first, exactly as a search with its seed
+// alone would, and only when that gives no valid part the whole pool: the
+// earlier searches' segments with its own (step 4d). Why both: a beam search
+// is not monotone in its library; on the larger pool the beam may keep other
+// states and lose the part the smaller library leads to.
+bool search_pass(const Problem& scene, const Environment& env, int li, const GenerateOptions& options, bool web_roots,
+                 GenerateProgress* progress, LoadOutcome& out, SegmentLibrary& pool) {
+  out.web_roots = web_roots;
+  if (progress) {
+    progress->web_roots = web_roots;
+    progress->stage = static_cast<int>(Stage::Discovery);
+  }
+  DiscoveryOptions dopt = DiscoveryOptions::from(scene);
+  dopt.web_roots = web_roots;
+  const auto t0 = std::chrono::steady_clock::now();
+  const DiscoveryResult found = discover_segments(scene, env, li, dopt, progress ? &progress->discovery : nullptr);
+  out.discovery_seconds = seconds_since(t0);
+  out.discovery = found.stats;
+  if (found.cancelled || cancel_requested(progress)) return false;
+
+  const bool retry = !pool.empty();
+  pool.absorb(found.library);
+  out.library_size = found.library.size();
+  out.press_rejected_segments = found.stats.press_rejected;
+  if (progress) progress->stage = static_cast<int>(Stage::Composition);
+  LoadOutcome pooled = out;  // the fields known before composition
+  bool finished = compose_and_check(scene, env, li, found.base, found.library, options, web_roots, progress, out);
+  if (finished && !out.ok && retry && pool.size() > found.library.size() && !cancel_requested(progress)) {
+    pooled.discovery_seconds = 0;  // counted once, in `out`
+    pooled.press_rejected_segments = 0;
+    pooled.library_size = pool.size();
+    finished = compose_and_check(scene, env, li, found.base, pool, options, web_roots, progress, pooled);
+    merge_pass(out, std::move(pooled), scene);
+  }
+  if (finished && !out.ok && unbendable_library(found, pool)) out.reason = no_bendable_segment(found);
+  if (std::getenv("SHEETGEN_COMPOSE_DEBUG"))  // where a load's time goes, pass by pass
+    std::fprintf(stderr, "[pass] %s web %d flat %d press %d seed %llu: discovery %.1f s, composition %.1f s, %d analyses, "
+                 "library %d, %s\n",
+                 out.load.c_str(), web_roots, scene.manufacturing.flat_extensions, scene.manufacturing.press_brake_required,
+                 static_cast<unsigned long long>(scene.search.seed), out.discovery_seconds, out.composition_seconds,
+                 out.fem_calls, out.library_size, out.ok ? "valid part" : "no part");
+  return finished;
 }
 
 // The scene of a load's seed retry k (1, 2, ...): its own random numbers,
