@@ -5,6 +5,7 @@ whether the parts are the same.
 
 Usage: PYTHONPATH=tools /usr/bin/python3 bench/compare_bench.py --old OLD/sheetgen --new build/native/cli/sheetgen
            [--scenes avionics_bay,corner,...] [--repeat 1] [--threads 2] [--env-old K=V] [--env-new K=V]
+           [--old-scenes OLD_COMMIT/sample_scenes]
 
 The scenes are solved at their own settings (the default: every sample scene).
 The two binaries alternate per scene (old first on odd repeats, new first on
@@ -12,7 +13,9 @@ even ones) so that a change in the machine's load between scenes falls on both;
 with --repeat N each figure is the fastest of N runs. Parts are compared per
 load: "same" when the tabs (corners, bends, thickness) agree to 1e-9 m,
 otherwise the new part's mass against the old one's. Prints a Markdown table
-for docs/benchmarks.md and exits 1 when a run fails.
+for docs/benchmarks.md and exits 1 when a run fails. With --old-scenes the old
+binary solves that folder's problem files (an older commit's scenes, e.g. before
+the load envelopes) and the new one today's; the parts are then not compared.
 """
 import argparse
 import os
@@ -46,10 +49,15 @@ def part_change(old, new):
     return "%s %+.2f %% (%s)" % ("lighter" if change < 0 else "heavier", change, key.split("_")[0])
 
 
-def solve(binary, scene, threads, env):
-    """One solve at the scene's own settings; SolveError when it did not finish."""
+def solve(binary, problem, threads, env):
+    """One solve at the problem's own settings; SolveError when it did not finish."""
     options = runner.SolveOptions(threads=threads, sheetgen=binary, env=env)
-    return runner.solve(paths.scene_problem(scene), options=options).check()
+    return runner.solve(problem, options=options).check()
+
+
+def old_problem(scene, args):
+    """The problem the old binary solves: the scene's own, or with --old-scenes that folder's."""
+    return os.path.join(args.old_scenes, scene, "problem.json") if args.old_scenes else paths.scene_problem(scene)
 
 
 def best(runs):
@@ -64,12 +72,21 @@ def compare_scene(scene, args):
         order = [("old", old), ("new", new)] if k % 2 == 0 else [("new", new), ("old", old)]
         for which, runs in order:
             binary, env = (args.old, args.env_old) if which == "old" else (args.new, args.env_new)
-            runs.append(solve(binary, scene, args.threads, env))
+            problem = old_problem(scene, args) if which == "old" else paths.scene_problem(scene)
+            runs.append(solve(binary, problem, args.threads, env))
     return best(old), best(new)
 
 
-def row(scene, old, new):
-    """The Markdown row of one scene and the parts' verdicts."""
+def row(scene, old, new, same_problem=True):
+    """The Markdown row of one scene and the parts' verdicts (none when the
+    two solved different problem files)."""
+    if not same_problem:
+        ok = lambda run: sum(p.get("status") == "ok" for p in run.parts)
+        return ("| %s | %.1f | %.1f | **%.2f** | %.1f / %.1f | %.1f / %.1f | %.2f / %.2f | %.0f / %.0f | "
+                "other problem files: old %d/%d parts, new %d/%d |" %
+                (scene, old.wall_s, new.wall_s, old.wall_s / new.wall_s, old.user_s, new.user_s, old.system_s,
+                 new.system_s, old.minor_faults / 1e6, new.minor_faults / 1e6, old.peak_rss_mb, new.peak_rss_mb,
+                 ok(old), len(old.parts), ok(new), len(new.parts)))
     changes = [part_change(a, b) for a, b in zip(old.parts, new.parts)]
     if len(old.parts) != len(new.parts):
         changes.append("%d loads against %d" % (len(old.parts), len(new.parts)))
@@ -101,6 +118,8 @@ def main():
     ap.add_argument("--threads", type=int, default=2)
     ap.add_argument("--env-old", action="append", help="KEY=VALUE added to the old binary's environment")
     ap.add_argument("--env-new", action="append", help="KEY=VALUE added to the new binary's environment")
+    ap.add_argument("--old-scenes", help="a folder of scenes (e.g. an older commit's sample_scenes) whose "
+                    "problem files the old binary solves, for a binary that cannot read today's")
     args = ap.parse_args()
     args.env_old, args.env_new = parse_env(args.env_old), parse_env(args.env_new)
     for label, binary in (("--old", args.old), ("--new", args.new)):
@@ -116,7 +135,7 @@ def main():
     for scene in args.scenes.split(","):
         old, new = compare_scene(scene, args)
         total_old, total_new = total_old + old.wall_s, total_new + new.wall_s
-        print(row(scene, old, new), flush=True)
+        print(row(scene, old, new, same_problem=not args.old_scenes), flush=True)
     print()
     print("Total wall: old %.1f s, new %.1f s, ratio %.2f" % (total_old, total_new, total_old / total_new))
 
