@@ -465,8 +465,8 @@ CLI::App* add_solve_command(CLI::App& app, SolveArgs& a) {
   solve_cmd->add_flag("--no-flat-fallback", a.no_flat_fallback,
                       "do not search a load a third time with flat extensions when no search found a valid part");
   solve_cmd->add_option("--seed-retries", a.seed_retries,
-                        "searches of a load with fresh seeds after every other pass found no valid part, each composing "
-                        "its segments with those found before it (default 2)")
+                        "searches of a load with fresh seeds after every other pass found no valid part; one whose own "
+                        "segments give no part composes them with those found before it (default 2)")
       ->check(CLI::Range(0, 100));
   return solve_cmd;
 }

@@ -32,9 +32,9 @@ struct GenerateOptions {
   // alone cannot stiffen it (docs/pipeline.md); off: --no-flat-fallback.
   bool flat_fallback = true;
   // A load that no pass above gave a valid part is searched again, at most
-  // this many times, each with a fresh seed and composing its segments
-  // pooled with those found before it (docs/pipeline.md step 4d);
-  // --seed-retries N.
+  // this many times, each with a fresh seed; one whose own segments give no
+  // part composes them pooled with those found before it (docs/pipeline.md
+  // step 4d); --seed-retries N.
   int seed_retries = 2;
   ComposeOptions compose;      // beam_width and threads are taken from the settings above
 };

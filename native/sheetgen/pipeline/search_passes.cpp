@@ -241,10 +241,10 @@ Problem retry_scene_of(const Problem& scene, int k) {
 // the pass whose candidate came nearest to valid again (its roots and grammar)
 // with a fresh seed, up to options.seed_retries times. Which part a search
 // finds depends on its seed: a load that one seed leaves without a part,
-// another often solves. Each retry composes its own segments pooled with
-// those of the searches before it in that grammar, so a part may join
-// connections that different seeds found. Only loads without a part pay for
-// them.
+// another often solves. A retry whose own segments give no part composes
+// them again pooled with those of the searches before it in that grammar
+// (search_pass), so a part may join connections that different seeds found.
+// Only loads without a part pay for them.
 void retry_with_fresh_seeds(const Problem& scene, const Environment& env, int li, const LoadOutcome& start,
                             const GenerateOptions& options, GenerateProgress* progress, LoadSearch& s) {
   LoadOutcome& best = s.answer;
