@@ -77,25 +77,26 @@ def compare_scene(scene, args):
     return best(old), best(new)
 
 
-def row(scene, old, new, same_problem=True):
-    """The Markdown row of one scene and the parts' verdicts (none when the
-    two solved different problem files)."""
+def parts_verdict(old, new, same_problem):
+    """The parts column: per load the same or how it changed, or, when the two
+    solved different problem files, only how many loads have a part."""
     if not same_problem:
         ok = lambda run: sum(p.get("status") == "ok" for p in run.parts)
-        return ("| %s | %.1f | %.1f | **%.2f** | %.1f / %.1f | %.1f / %.1f | %.2f / %.2f | %.0f / %.0f | "
-                "other problem files: old %d/%d parts, new %d/%d |" %
-                (scene, old.wall_s, new.wall_s, old.wall_s / new.wall_s, old.user_s, new.user_s, old.system_s,
-                 new.system_s, old.minor_faults / 1e6, new.minor_faults / 1e6, old.peak_rss_mb, new.peak_rss_mb,
-                 ok(old), len(old.parts), ok(new), len(new.parts)))
+        return "other problem files: old %d/%d parts, new %d/%d" % (ok(old), len(old.parts), ok(new), len(new.parts))
     changes = [part_change(a, b) for a, b in zip(old.parts, new.parts)]
     if len(old.parts) != len(new.parts):
         changes.append("%d loads against %d" % (len(old.parts), len(new.parts)))
     same = sum(c == "same" for c in changes)
     others = "; ".join("%s: %s" % (p["load"], c) for p, c in zip(new.parts, changes) if c != "same")
-    return ("| %s | %.1f | %.1f | **%.2f** | %.1f / %.1f | %.1f / %.1f | %.2f / %.2f | %.0f / %.0f | %d/%d same%s |" %
+    return "%d/%d same%s" % (same, len(changes), ("; " + others) if others else "")
+
+
+def row(scene, old, new, same_problem=True):
+    """The Markdown row of one scene: times, faults, memory and the parts' verdict."""
+    return ("| %s | %.1f | %.1f | **%.2f** | %.1f / %.1f | %.1f / %.1f | %.2f / %.2f | %.0f / %.0f | %s |" %
             (scene, old.wall_s, new.wall_s, old.wall_s / new.wall_s, old.user_s, new.user_s, old.system_s,
              new.system_s, old.minor_faults / 1e6, new.minor_faults / 1e6, old.peak_rss_mb, new.peak_rss_mb,
-             same, len(changes), ("; " + others) if others else ""))
+             parts_verdict(old, new, same_problem)))
 
 
 def parse_env(pairs):

@@ -4,6 +4,7 @@
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
+#include <optional>
 #include <set>
 #include <string>
 #include <utility>
@@ -210,14 +211,15 @@ bool search_pass(const Problem& scene, const Environment& env, int li, const Gen
   out.library_size = found.library.size();
   out.press_rejected_segments = found.stats.press_rejected;
   if (progress) progress->stage = static_cast<int>(Stage::Composition);
-  LoadOutcome pooled = out;  // the fields known before composition
+  std::optional<LoadOutcome> pooled;  // a retry's fields known before composition, for the pool's
+  if (retry) pooled = out;
   bool finished = compose_and_check(scene, env, li, found.base, found.library, options, web_roots, progress, out);
   if (finished && !out.ok && retry && pool.size() > found.library.size() && !cancel_requested(progress)) {
-    pooled.discovery_seconds = 0;  // counted once, in `out`
-    pooled.press_rejected_segments = 0;
-    pooled.library_size = pool.size();
-    finished = compose_and_check(scene, env, li, found.base, pool, options, web_roots, progress, pooled);
-    merge_pass(out, std::move(pooled), scene);
+    pooled->discovery_seconds = 0;  // counted once, in `out`
+    pooled->press_rejected_segments = 0;
+    pooled->library_size = pool.size();
+    finished = compose_and_check(scene, env, li, found.base, pool, options, web_roots, progress, *pooled);
+    merge_pass(out, std::move(*pooled), scene);
   }
   if (finished && !out.ok && unbendable_library(found, pool)) out.reason = no_bendable_segment(found);
   if (std::getenv("SHEETGEN_COMPOSE_DEBUG"))  // where a load's time goes, pass by pass
