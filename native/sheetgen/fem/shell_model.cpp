@@ -460,7 +460,38 @@ ShellSolver::ShellSolver(ShellSolver&&) noexcept = default;
 ShellSolver& ShellSolver::operator=(ShellSolver&&) noexcept = default;
 int ShellSolver::symbolic_analyses() const { return impl_->factor.symbolic_analyses(); }
 
+bool StiffnessInputs::same(const ShellModel& m, const ShellSolveOptions& o) const {
+  const Material& a = material;
+  const Material& b = m.material;
+  const ShellElementOptions& e = element;
+  const ShellElementOptions& f = o.element;
+  return backend == o.backend && singular_pivot_ratio == o.singular_pivot_ratio && a.youngs_modulus == b.youngs_modulus &&
+         a.poisson_ratio == b.poisson_ratio && a.thickness == b.thickness && e.alpha_b == f.alpha_b &&
+         e.beta0 == f.beta0 && e.transverse_shear == f.transverse_shear && e.shear_correction == f.shear_correction &&
+         nodes == m.nodes && triangles == m.triangles &&
+         std::equal(supports.begin(), supports.end(), m.supports.begin(), m.supports.end(),
+                    [](const NodeSupport& x, const NodeSupport& y) { return x.node == y.node && x.fixed == y.fixed; }) &&
+         std::equal(rigid_links.begin(), rigid_links.end(), m.rigid_links.begin(), m.rigid_links.end(),
+                    [](const RigidLink& x, const RigidLink& y) { return x.master == y.master && x.slaves == y.slaves; });
+}
+
+void StiffnessInputs::keep(const ShellModel& m, const ShellSolveOptions& o) {
+  nodes = m.nodes;
+  triangles = m.triangles;
+  supports = m.supports;
+  rigid_links = m.rigid_links;
+  material = m.material;
+  element = o.element;
+  backend = o.backend;
+  singular_pivot_ratio = o.singular_pivot_ratio;
+}
+
 void ShellSolver::Impl::prepare(const ShellModel& m, const ShellSolveOptions& options, ShellResult& timing) {
+  if (prepared && inputs.same(m, options)) {
+    timing.pattern_reused = true;
+    return;
+  }
+  prepared = false;  // until the new factor stands (factorise may throw)
   auto t0 = Clock::now();
   map = build_dof_map(m);
   if (map.reduced == 0) throw FemError("supports", "every DOF is fixed; there is nothing to solve");
@@ -469,6 +500,8 @@ void ShellSolver::Impl::prepare(const ShellModel& m, const ShellSolveOptions& op
   t0 = Clock::now();
   timing.pattern_reused = factor.factorise(stiffness, options.backend, options.singular_pivot_ratio).pattern_reused;
   timing.factor_seconds = seconds_since(t0);
+  inputs.keep(m, options);
+  prepared = true;
 }
 
 std::vector<ShellResult> ShellSolver::Impl::solve(const ShellModel& m, const std::vector<ShellLoadCase>& cases,
