@@ -110,11 +110,9 @@ std::vector<Vec2> mirrored(const std::vector<Vec2>& profile) {
 // crossing): exact below `stop_below`; at or above it, possibly only a lower
 // bound (the gap between bounding boxes), which answers "closer than
 // stop_below?" the same way at a fraction of the cost: most tabs are far
-// from most tools.
-double polygon_prism_distance(const std::vector<Vec3>& polygon, const Vec3& normal, const Prism& prism,
-                              double stop_below) {
-  BoundingBox pb;
-  for (const Vec3& v : polygon) pb.extend(v);
+// from most tools. `pb` is the polygon's bounding box.
+double polygon_prism_distance(const std::vector<Vec3>& polygon, const BoundingBox& pb, const Vec3& normal,
+                              const Prism& prism, double stop_below) {
   const double gap = box_gap(pb, prism.box);
   if (gap >= stop_below) return gap;
   for (const Vec3& v : polygon)
@@ -225,19 +223,16 @@ class BendCheck {
 
   Attempt run(const PunchTool& punch, const DieTool& die, bool flipped) {
     if (std::string r = angle_rule(punch, die); !r.empty()) return {r, 0};
-    ro_.angles[k_] = 0;
-    realise_into(part_, rp_, ro_);
+    flat_state();
     if (std::string r = flange_rule(die); !r.empty()) return {r, 1, die.min_flange_ratio * die.v_opening};
     if (std::string r = fits_open_press(punch, die); !r.empty()) return {r, 2};
     build_tools(punch, die, flipped);
     const double target = part_.tabs[k_].params.theta3;
     const int steps = std::max(1, static_cast<int>(std::ceil(std::abs(target) / tools_.max_step)));
     for (int s = 0; s <= steps; ++s) {
-      ro_.angles[k_] = target * s / steps;
-      realise_into(part_, rp_, ro_);
-      if (std::string r = collision(punch, die); !r.empty()) {
+      if (std::string r = collision(pose(s, steps), punch, die); !r.empty()) {
         char at[64];
-        std::snprintf(at, sizeof at, " at %.0f deg of its %.0f deg", std::abs(ro_.angles[k_]) / kDeg,
+        std::snprintf(at, sizeof at, " at %.0f deg of its %.0f deg", std::abs(target * s / steps) / kDeg,
                       std::abs(target) / kDeg);
         return {r + at, 3 + static_cast<double>(s + 1) / (steps + 1)};
       }
@@ -246,6 +241,42 @@ class BendCheck {
   }
 
  private:
+  // The part in one state of the stroke, in the tool frame. It does not depend
+  // on the punch, the die or the side, so each state is computed once per bend
+  // and shared by every tool combination tried (up to punches x dies x 2).
+  struct Pose {
+    std::vector<std::vector<Vec3>> corners;  // per tab
+    std::vector<Vec3> normals;
+    std::vector<BoundingBox> boxes;
+  };
+
+  // rp_ with the bend still flat (the flange and open-press rules, the tools' placement).
+  void flat_state() {
+    if (flat_) return;
+    ro_.angles[k_] = 0;
+    realise_into(part_, rp_, ro_);
+    flat_ = true;
+  }
+
+  // State s of `steps` along the stroke (bend angle theta3 * s / steps).
+  const Pose& pose(int s, int steps) {
+    if (poses_.empty()) poses_.resize(steps + 1);
+    Pose& p = poses_[s];
+    if (!p.corners.empty()) return p;
+    ro_.angles[k_] = part_.tabs[k_].params.theta3 * s / steps;
+    realise_into(part_, pose_rp_, ro_);
+    const ToolFrame f = tool_frame(pose_rp_, part_, k_, ro_.angles[k_]);
+    for (const RealisedTab& tab : pose_rp_.tabs) {
+      std::vector<Vec3> c;
+      BoundingBox b;
+      for (const Vec3& v : tab.corners) b.extend(c.emplace_back(f.point(v)));
+      p.corners.push_back(std::move(c));
+      p.normals.push_back(f.vector(tab.normal));
+      p.boxes.push_back(b);
+    }
+    return p;
+  }
+
   std::string angle_rule(const PunchTool& punch, const DieTool& die) const {
     const double inner = M_PI - std::abs(part_.tabs[k_].params.theta3) - tools_.springback;
     char buf[160];
@@ -328,15 +359,13 @@ class BendCheck {
   }
 
   // The first tab too close to a tool or the machine in the current state.
-  std::string collision(const PunchTool& punch, const DieTool& die) const {
-    const ToolFrame f = tool_frame(rp_, part_, k_, ro_.angles[k_]);
+  std::string collision(const Pose& pose, const PunchTool& punch, const DieTool& die) const {
     const double need = t_ / 2 + tools_.gap;
     for (int i = 0; i < part_.size(); ++i) {
-      std::vector<Vec3> c;
-      for (const Vec3& p : rp_.tabs[i].corners) c.push_back(f.point(p));
-      const Vec3 n = f.vector(rp_.tabs[i].normal);
       const bool own = i == k_ || i == parent_;  // the bend's flanges touch punch tip and die by design
-      auto near = [&](const Prism& p) { return polygon_prism_distance(c, n, p, need) < need; };
+      auto near = [&](const Prism& p) {
+        return polygon_prism_distance(pose.corners[i], pose.boxes[i], pose.normals[i], p, need) < need;
+      };
       char buf[160];
       if (!own)
         for (const Prism& p : punch_)
@@ -355,7 +384,10 @@ class BendCheck {
   const ToolSet& tools_;
   int k_, parent_;
   RealiseOptions ro_;
-  RealisedPart rp_;
+  RealisedPart rp_;       // the bend flat (flat_state)
+  bool flat_ = false;
+  RealisedPart pose_rp_;  // scratch for pose()
+  std::vector<Pose> poses_;
   std::vector<Prism> punch_, die_;
   Prism ram_, bed_;
 };
