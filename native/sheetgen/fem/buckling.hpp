@@ -12,7 +12,7 @@ namespace sheetgen {
 
 struct BucklingOptions {
   int modes = 1;             // buckling factors wanted
-  double tolerance = 1e-9;   // Lanczos relative residual
+  double tolerance = 1e-6;   // Lanczos relative residual (LanczosOptions::tolerance)
   int max_restarts = 500;
   // The case is "in compression", and gets the eigen solve, when some
   // element's smaller principal membrane resultant is below -this times the

@@ -11,7 +11,7 @@ namespace sheetgen {
 
 struct VibrationOptions {
   int modes = 3;             // frequencies wanted
-  double tolerance = 1e-9;   // Lanczos relative residual
+  double tolerance = 1e-6;   // Lanczos relative residual (LanczosOptions::tolerance)
   int max_restarts = 500;
 };
 
