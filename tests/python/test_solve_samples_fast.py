@@ -1,8 +1,8 @@
 #!/usr/bin/python3
 """The fast tier's end-to-end check: every single scene in sample_scenes/
 (listed from the folder; the avionics bay is the full tier's) solves at reduced
-settings (SETTINGS below) with a valid part for every load (exit 0; the two
-scenes of WITHOUT_PART_UNDER_ENVELOPE may end without one, with a reason), and
+settings (SETTINGS below) with a valid part for every load (exit 0; the
+scene of WITHOUT_PART_UNDER_ENVELOPE may end without one, with a reason), and
 every part passes the checks of sheetgen_tools.verify that need no CalculiX:
 brute-force clearance (to the environment, the load boxes and the parts before
 it), flanges flush on their rivet areas, the ezdxf outline of the flat pattern
@@ -27,23 +27,25 @@ from sheetgen_tools.verify import VerifyOptions, verify_output
 # 300, beam 4, shelf, corner, wall_standoff, corner_obstacle, slanted and
 # sharp_angles have a valid part in 5-30 s each; maze has none (its own
 # settings find one, 77 s) and bulkhead_hole finds none at either (28 s at its
-# own).
+# own). boxed_in: see SETTINGS.
 REDUCED = {"chains": 6, "iterations": 300, "beam": 4}
-# Scenes drawn for one 9 g downward case that have no part under the FAR
-# 25.561 envelope today (docs/scenes.md "Under the envelope"): a box carried
-# through a slot or a hole on webs, which the sideways 3 g cases bend across
-# their thickness (the nearest candidates are 1.7 and 28 mm off against the
-# 1 mm limit at the default settings). Their run must finish (exit 2: no valid
-# part) with a reason that names the failing check's case; a part they do
-# find is verified like any other.
-WITHOUT_PART_UNDER_ENVELOPE = {"boxed_in", "bulkhead_hole"}
+# A scene that has no part under the FAR 25.561 envelope today (docs/scenes.md
+# "Under the envelope"): a box carried through a lightening hole, whose
+# nearest candidate at its own settings is 81 % over the down 6 g compliance
+# limit, though a hand-built part exists
+# (tests/native/compose/scene_feasibility_test.cpp). Its run must finish (exit
+# 2: no valid part) with a reason that names the failing check's case; a part
+# it does find is verified like any other.
+WITHOUT_PART_UNDER_ENVELOPE = {"bulkhead_hole"}
 # Not here: the avionics bay. Under its envelope it takes 407 s at its own
 # settings (10/10 parts; docs/scenes.md) and the reduced settings leave two
 # loads without a part; its one-case stand-in took 170-380 s beside the other
 # tests. Both are beyond this tier's budget, so the bay is the full tier's
 # (test_solve_samples.py, with CalculiX).
 FULL_TIER_ONLY = {"avionics_bay"}
-SETTINGS = {"bulkhead_hole": {}, "maze": {}}
+# boxed_in's part comes from the web pass pooled with the first pass's
+# segments, at its own settings (72 s; docs/discovery.md "Web roots").
+SETTINGS = {"boxed_in": {}, "bulkhead_hole": {}, "maze": {}}
 
 
 def settings(scene):

@@ -186,9 +186,10 @@ bool merge_pass(LoadOutcome& best, LoadOutcome&& pass, const Problem& scene) {
 // Fills the search's fields of `out` (answer or closest candidate, reason,
 // statistics, history, times); false when it was cancelled. The discovered
 // segments join `pool`. A first search (empty pool) composes its library. A
-// retry composes its own library first, exactly as a search with its seed
-// alone would, and only when that gives no valid part the whole pool: the
-// earlier searches' segments with its own (step 4d). Why both: a beam search
+// later one (a retry, step 4d, or the web pass, which starts from the first
+// pass's segments) composes its own library first, exactly as a search with
+// its seed alone would, and only when that gives no valid part the whole pool:
+// the earlier searches' segments with its own. Why both: a beam search
 // is not monotone in its library; on the larger pool the beam may keep other
 // states and lose the part the smaller library leads to.
 bool search_pass(const Problem& scene, const Environment& env, int li, const GenerateOptions& options, bool web_roots,
@@ -206,15 +207,15 @@ bool search_pass(const Problem& scene, const Environment& env, int li, const Gen
   out.discovery = found.stats;
   if (found.cancelled || cancel_requested(progress)) return false;
 
-  const bool retry = !pool.empty();
+  const bool later = !pool.empty();  // a retry or the web pass: there are earlier segments
   pool.absorb(found.library);
   out.library_size = found.library.size();
   out.press_rejected_segments = found.stats.press_rejected;
   if (progress) progress->stage = static_cast<int>(Stage::Composition);
-  std::optional<LoadOutcome> pooled;  // a retry's fields known before composition, for the pool's
-  if (retry) pooled = out;
+  std::optional<LoadOutcome> pooled;  // a later search's fields known before composition, for the pool's
+  if (later) pooled = out;
   bool finished = compose_and_check(scene, env, li, found.base, found.library, options, web_roots, progress, out);
-  if (finished && !out.ok && retry && pool.size() > found.library.size() && !cancel_requested(progress)) {
+  if (finished && !out.ok && later && pool.size() > found.library.size() && !cancel_requested(progress)) {
     pooled->discovery_seconds = 0;  // counted once, in `out`
     pooled->press_rejected_segments = 0;
     pooled->library_size = pool.size();
@@ -278,11 +279,14 @@ LoadSearch search_passes(const Problem& scene, const Environment& env, int li, c
   first = start;
   // Discovery and composition; when that finds no valid part, once more with
   // web roots (docs/discovery.md "Web roots"): the plates of the first pass
-  // may be too soft where the way to the rivet areas is narrow.
+  // may be too soft where the way to the rivet areas is narrow. The web pass
+  // starts from the first pass's segments, so that when its own give no part
+  // it composes both: a plate from the base beside webs to another support
+  // (boxed_in's answer, docs/discovery.md "Web roots") needs segments of each.
   s.finished = search_pass(scene, env, li, options, /*web_roots=*/false, progress, first, s.library);
   if (s.finished && !first.ok && options.web_fallback && !cancel_requested(progress)) {
     LoadOutcome webbed = start;
-    SegmentLibrary pool;
+    SegmentLibrary pool = s.library;
     s.finished = search_pass(scene, env, li, options, /*web_roots=*/true, progress, webbed, pool);
     webbed.web_pass_tried = first.web_pass_tried = true;
     if (merge_pass(first, std::move(webbed), scene)) s.library = std::move(pool);
