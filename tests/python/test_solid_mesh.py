@@ -82,6 +82,15 @@ class SolidMesh(unittest.TestCase):
         with self.assertRaisesRegex(RuntimeError, "no union .* is one solid .*0 t: 2 solids"):
             solid_reference.mesh_plates([a, b], t, 2 * t)
 
+    def test_a_child_that_dies_is_an_exception_not_a_crash(self):
+        # gmsh's mesher aborts its process on some unions (solid_reference.run_in_child);
+        # os.abort stands for it: the same SIGABRT, here on purpose.
+        self.assertEqual(solid_reference.run_in_child(divmod, 7, 2), (3, 1))
+        with self.assertRaisesRegex(RuntimeError, "abort died in its child process"):
+            solid_reference.run_in_child(os.abort)
+        with self.assertRaises(ZeroDivisionError):  # an exception of the child is raised as itself
+            solid_reference.run_in_child(divmod, 1, 0)
+
 
 if __name__ == "__main__":
     unittest.main()

@@ -43,6 +43,8 @@ other than the box link are those ties; the bonded lap replaces them. Sheets
 farther apart would not touch in the solid and leave the tie out; `SolidNotApplicable` says so and the caller falls back
 to the shell deck, as it does for a result without the tie points.
 """
+import concurrent.futures
+import multiprocessing
 import os
 import subprocess
 
@@ -153,6 +155,34 @@ def _mesh(gmsh, h):
     return coords.reshape(-1, 3), index[tet_nodes[0].astype(np.int64).reshape(-1, 10)][:, GMSH_TO_CCX_TET10]
 
 
+def _mesh_union(tabs, t, h, tolerance):
+    """The union at `tolerance` meshed by _mesh, in a fresh gmsh session (run in
+    a child process by mesh_plates)."""
+    import gmsh  # Debian python3-gmsh; imported here so the checks without CalculiX run without it
+    gmsh.initialize(readConfigFiles=False)
+    try:
+        gmsh.option.setNumber("General.Terminal", 0)
+        _union(gmsh, tabs, t, tolerance)
+        return _mesh(gmsh, h)
+    finally:
+        gmsh.finalize()
+
+
+def run_in_child(fn, *args):
+    """fn(*args) in a child process (forked): its result, its exception, or a
+    RuntimeError when the child dies. gmsh's 3-D mesher aborts the whole
+    process on some unions (an exception thrown where nothing catches it:
+    "terminate called after throwing an instance of std::string", measured on
+    boxed_in's part at c720526 with the 1e-2 t union; the other three meshed).
+    In a child that is one failed attempt, and mesh_plates tries the next union."""
+    context = multiprocessing.get_context("fork")
+    with concurrent.futures.ProcessPoolExecutor(max_workers=1, mp_context=context) as pool:
+        try:
+            return pool.submit(fn, *args).result()
+        except concurrent.futures.process.BrokenProcessPool:
+            raise RuntimeError(f"{getattr(fn, '__name__', fn)} died in its child process") from None
+
+
 def mesh_plates(tabs, t, h):
     """Fuse one t-thick plate per tab (dicts with 'corners' and 'normal', m) and
     mesh the solid in C3D10 of size h (m). Returns (X (n x 3) m, tets (k x 10)
@@ -164,20 +194,19 @@ def mesh_plates(tabs, t, h):
     try:
         gmsh.option.setNumber("General.Terminal", 0)
         unions = {tol: _union(gmsh, tabs, t, tol) for tol in FUSE_TOLERANCES}
-        tried = [f"{tol:g} t: {n} solids" for tol, (n, _) in unions.items() if n != 1]
-        for tol in sorted((tol for tol, (n, _) in unions.items() if n == 1), key=lambda k: -unions[k][1]):
-            _union(gmsh, tabs, t, tol)
-            try:
-                X, tets = _mesh(gmsh, h)
-            except Exception as e:  # gmsh refuses some unions ("overlapping facets")
-                tried.append(f"{tol:g} t: gmsh: {e}")
-                continue
-            missing = uncovered_tabs(tabs, t, X, tets)
-            if not missing:
-                return X, tets
-            tried.append(f"{tol:g} t: the mesh leaves out tab(s) {missing}")
     finally:
         gmsh.finalize()
+    tried = [f"{tol:g} t: {n} solids" for tol, (n, _) in unions.items() if n != 1]
+    for tol in sorted((tol for tol, (n, _) in unions.items() if n == 1), key=lambda k: -unions[k][1]):
+        try:
+            X, tets = run_in_child(_mesh_union, tabs, t, h, tol)
+        except Exception as e:  # gmsh refuses some unions ("overlapping facets") or aborts on them
+            tried.append(f"{tol:g} t: gmsh: {e}")
+            continue
+        missing = uncovered_tabs(tabs, t, X, tets)
+        if not missing:
+            return X, tets
+        tried.append(f"{tol:g} t: the mesh leaves out tab(s) {missing}")
     raise RuntimeError("no union of the plates is one solid holding every tab (" + "; ".join(tried) + ")")
 
 
