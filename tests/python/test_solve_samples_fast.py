@@ -44,7 +44,7 @@ WITHOUT_PART_UNDER_ENVELOPE = {"bulkhead_hole"}
 # (test_solve_samples.py, with CalculiX).
 FULL_TIER_ONLY = {"avionics_bay"}
 # boxed_in's part comes from the web pass pooled with the first pass's
-# segments, at its own settings (72 s; docs/discovery.md "Web roots").
+# segments, at its own settings (72 s; docs/discovery.md "Plates beside webs").
 SETTINGS = {"boxed_in": {}, "bulkhead_hole": {}, "maze": {}}
 
 

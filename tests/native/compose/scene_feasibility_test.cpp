@@ -30,8 +30,9 @@ struct WebDesign {
 };
 
 // A leg from the lower side edge of web `front` (side 0: the box's -y side)
-// down to the floor (z = 0) over x0..x1 (as far as the web reaches), kinked by the grammar's smallest bend
-// so that it leans away from the box, with a flange on floor_area.
+// down to the floor (z = 0) over x0..x1 (as far as the web reaches), kinked
+// by the grammar's smallest bend so that it leans away from the box, with a
+// flange on floor_area.
 void add_leg(Part& part, int front, int side, double x0, double x1, int floor_area, const Problem& p) {
   const double kink = p.manufacturing.min_bend_angle;
   const RealisedPart rp = realise(part);
@@ -121,7 +122,7 @@ TEST(SceneFeasibility, BulkheadHoleHasAHandBuiltPart) { expect_feasible("bulkhea
 // floor; the pair takes the twisting moment of the sideways force and the
 // vertical forces. The plate comes from the search's first pass, the webs from
 // its web pass, which is why the web pass composes both (docs/discovery.md
-// "Web roots").
+// "Plates beside webs").
 struct PlateWebDesign {
   double depth;           // m, webs hung from the base's +-y edges
   double front_length;    // m, of the webs continuing them through the opening
