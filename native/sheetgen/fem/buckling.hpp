@@ -6,14 +6,15 @@
 #include <string>
 #include <vector>
 
+#include "sheetgen/fem/lanczos.hpp"
 #include "sheetgen/fem/shell_model.hpp"
 
 namespace sheetgen {
 
 struct BucklingOptions {
   int modes = 1;             // buckling factors wanted
-  double tolerance = 1e-6;   // Lanczos relative residual (LanczosOptions::tolerance)
-  int max_restarts = 500;
+  double tolerance = LanczosOptions{}.tolerance;  // Lanczos relative residual (why 1e-6: lanczos.hpp)
+  int max_restarts = LanczosOptions{}.max_restarts;
   // The case is "in compression", and gets the eigen solve, when some
   // element's smaller principal membrane resultant is below -this times the
   // largest principal resultant magnitude of the model: compression above

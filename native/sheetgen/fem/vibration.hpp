@@ -5,14 +5,15 @@
 #include <string>
 #include <vector>
 
+#include "sheetgen/fem/lanczos.hpp"
 #include "sheetgen/fem/shell_model.hpp"
 
 namespace sheetgen {
 
 struct VibrationOptions {
   int modes = 3;             // frequencies wanted
-  double tolerance = 1e-6;   // Lanczos relative residual (LanczosOptions::tolerance)
-  int max_restarts = 500;
+  double tolerance = LanczosOptions{}.tolerance;  // Lanczos relative residual (why 1e-6: lanczos.hpp)
+  int max_restarts = LanczosOptions{}.max_restarts;
 };
 
 struct VibrationResult {
