@@ -7,7 +7,7 @@ result.json, the scale and the overall dimensions; and the stated scale is
 true: the flat pattern's outline, found in the page's vector content
 (pdftocairo -svg: the one path filled with the sheet's tint), is as wide and
 as tall on the paper as the outline of result.json divided by the scale,
-within 0.1 mm. With --sheetgen it solves corner twice, on 1 and on 2 threads, and
+within 0.1 mm. With --sheetgen it solves shelf twice, on 1 and on 2 threads, and
 the two drawing.pdf must be the same bytes (no creation date in the PDF; the
 same search gives the same part on any thread count).
 
@@ -109,28 +109,31 @@ def check_part(out_dir, part, tmp):
 
 def main():
     ap = argparse.ArgumentParser()
-    ap.add_argument("--sheetgen", help="solve corner (6 x 300, beam 4) with this CLI and check its drawing")
+    ap.add_argument("--sheetgen", help="solve shelf (6 x 300, beam 4) with this CLI and check its drawing")
     ap.add_argument("--out", help="check the drawings of an already solved folder instead")
     args = ap.parse_args()
     if not args.out and not args.sheetgen:
         ap.error("give --sheetgen or --out")
     out = args.out
     if not out:
-        # The fast tier's sample settings (test_solve_samples_fast.py): corner has a valid part at
-        # 6 x 300, beam 4 (about 9 s on one thread); at 2 x 100, beam 2 it has none, and so no drawing.
-        runs = [runner.solve(paths.scene_problem("corner"), options=runner.SolveOptions(
+        # shelf has a valid part with four bends at the fast tier's sample settings (6 x 300, beam 4;
+        # test_solve_samples_fast.py) in about 8 s on one thread, a third of corner's time.
+        runs = [runner.solve(paths.scene_problem("shelf"), options=runner.SolveOptions(
             chains=6, iterations=300, beam=4, threads=t, sheetgen=os.path.abspath(args.sheetgen))) for t in (1, 2)]
         for solved in runs:
             if not solved.finished:
                 raise SystemExit("solve failed: " + solved.stderr)
         out = runs[1].out_dir
-        pdfs = [open(os.path.join(r.out_dir, "avionics_box", "drawing.pdf"), "rb").read()
-                if os.path.exists(os.path.join(r.out_dir, "avionics_box", "drawing.pdf")) else None for r in runs]
-        if pdfs[0] is None or pdfs[0] != pdfs[1]:
-            print("FAIL  drawing.pdf of 1 and 2 threads: %s" % ("missing" if pdfs[0] is None else "different bytes"))
+
+        def pdfs_of(run):
+            return {p["load"]: open(os.path.join(run.out_dir, p["load"], "drawing.pdf"), "rb").read()
+                    for p in run.result["parts"] if os.path.exists(os.path.join(run.out_dir, p["load"], "drawing.pdf"))}
+        pdfs = [pdfs_of(r) for r in runs]
+        if not pdfs[0] or pdfs[0] != pdfs[1]:
+            print("FAIL  drawing.pdf of 1 and 2 threads: %s" % ("missing" if not pdfs[0] else "different bytes"))
             print("drawing_pdf: 0 passed, 1 failed")
             sys.exit(1)
-        print("ok    drawing.pdf of 1 and 2 threads: the same %d bytes" % len(pdfs[0]))
+        print("ok    drawing.pdf of 1 and 2 threads: the same %d bytes" % sum(map(len, pdfs[0].values())))
     doc = json.load(open(os.path.join(out, "result.json")))
     parts = [p for p in doc["parts"] if p["status"] == "ok"]
     failed = 0
