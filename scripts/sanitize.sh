@@ -17,13 +17,20 @@ ROOT="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 BUILD_DIR="${SANITIZE_BUILD_DIR:-$ROOT/build-sanitize}"
 JOBS="${JOBS:-2}"
 export CCACHE_DIR="${CCACHE_DIR:-$HOME/.cache/ccache}"
+# Paths under the checkout are hashed relative to it, so a fresh clone in
+# another folder reuses the cache of an earlier one (the CI's case).
+export CCACHE_BASEDIR="${CCACHE_BASEDIR:-$ROOT}" CCACHE_NOHASHDIR="${CCACHE_NOHASHDIR:-1}"
 
 bash "$ROOT/scripts/install_deps.sh"
 echo "== configure + build ($BUILD_DIR, ASan + UBSan)"
 # -O1 -g1: the optimisation ASan's documentation recommends, and line tables
 # for readable reports. Full -O2 -g compiled the OpenVDB translation unit
 # alone in 260 s under ASan from a cold cache (the fast tier's budget is 20 min).
-cmake -S "$ROOT" -B "$BUILD_DIR" -G Ninja -DCMAKE_BUILD_TYPE=None -DCMAKE_CXX_FLAGS="-O1 -g1 -DNDEBUG" -DCMAKE_C_FLAGS="-O1 -g1 -DNDEBUG" \
+# clang (SANITIZE_CC / SANITIZE_CXX to change it): the fast tier's instrumented
+# core, part and fem areas compile and run in 243 s with clang 14 against
+# 356 s with gcc 12 (ccache off; a test batch in half gcc's time, the FEM's
+# library files in a third to a half less); the Release build stays on gcc.
+cmake -S "$ROOT" -B "$BUILD_DIR" -G Ninja -DCMAKE_C_COMPILER="${SANITIZE_CC:-clang}" -DCMAKE_CXX_COMPILER="${SANITIZE_CXX:-clang++}" -DCMAKE_BUILD_TYPE=None -DCMAKE_CXX_FLAGS="-O1 -g1 -DNDEBUG" -DCMAKE_C_FLAGS="-O1 -g1 -DNDEBUG" \
   -DSHEETGEN_SANITIZE=ON -DSHEETGEN_SANITIZE_OPENVDB="${SANITIZE_OPENVDB:-ON}" \
   -DSHEETGEN_DISTANCE_FIELD_OBJECT="${SANITIZE_DISTANCE_FIELD_OBJECT:-}" \
   -DSHEETGEN_PYTHON=OFF -DSHEETGEN_BENCH=OFF -DSHEETGEN_TESTS=ON >/dev/null

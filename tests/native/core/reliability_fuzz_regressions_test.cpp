@@ -79,8 +79,10 @@ TEST(FuzzRegression, PlyNonIntegerIndicesAreRefused) {
     return "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\nproperty float z\n"
            "element face 1\nproperty list uchar " + type + " vertex_indices\nend_header\n0 0 0\n1 0 0\n0 1 0\n" + face + "\n";
   };
-  for (const auto& [type, face] : {std::pair{"float", "3 0 1 1e30"}, {"float", "3 0 1 nan"}, {"float", "3 0 1 1.5"},
-                                   {"uint", "3 0 1 4294967295"}, {"int", "3 0 1 -1"}}) {
+  for (const auto& bad : {std::pair{"float", "3 0 1 1e30"}, {"float", "3 0 1 nan"}, {"float", "3 0 1 1.5"},
+                          {"uint", "3 0 1 4294967295"}, {"int", "3 0 1 -1"}}) {
+    // Not a structured binding: a lambda may capture one only from C++20 on (clang refuses it).
+    const std::string type = bad.first, face = bad.second;
     SCOPED_TRACE(face);
     const InputError e = expect_input_error([&] { parse_ply(ply(type, face), "m.ply"); });
     EXPECT_EQ(e.field(), "face 0");
