@@ -71,7 +71,8 @@ class GenerateInBlender(unittest.TestCase):
         import threading
         import time
         sg = native()
-        p = sg.load_problem(os.path.join(ROOT, "sample_scenes", "corner", "problem.json"))
+        # shelf: about 2.5 s at this size (corner, which finds no part there and runs every fallback, 13 s)
+        p = sg.load_problem(os.path.join(ROOT, "sample_scenes", "shelf", "problem.json"))
         progress = sg.GenerateProgress()
         box = {}
         worker = threading.Thread(target=lambda: box.setdefault("r", sg.generate(p, progress, seed=3, chains=2, iterations=100, beam_width=2)))
@@ -93,7 +94,8 @@ class GenerateInBlender(unittest.TestCase):
         import threading
         import time
         sg = native()
-        p = sg.load_problem(os.path.join(ROOT, "sample_scenes", "corner", "problem.json"))
+        # shelf: about 2.5 s at this size (corner, which finds no part there and runs every fallback, 13 s)
+        p = sg.load_problem(os.path.join(ROOT, "sample_scenes", "shelf", "problem.json"))
         progress = sg.GenerateProgress()
         box = {}
         worker = threading.Thread(target=lambda: box.setdefault("r", sg.generate(p, progress)))

@@ -25,8 +25,7 @@ from sheetgen_tools.verify import VerifyOptions, verify_output
 # scenes' own are 10 chains x 1000 iterations, beam 8, seed 1. Measured on the
 # shared 2-core machine (--threads 2) under the envelope at 8ca8d3b: at 6 x
 # 300, beam 4, shelf, corner, wall_standoff, corner_obstacle, slanted and
-# sharp_angles have a valid part in 5-30 s each; maze has none (its own
-# settings find one, 71 s) and bulkhead_hole finds none at either (18 s at
+# sharp_angles have a valid part in 5-30 s each; maze has none (see SETTINGS) and bulkhead_hole finds none at either (18 s at
 # these, 55 s at its own). boxed_in: see SETTINGS.
 REDUCED = {"chains": 6, "iterations": 300, "beam": 4}
 # A scene that has no part under the FAR 25.561 envelope today (docs/scenes.md
@@ -48,8 +47,9 @@ FULL_TIER_ONLY = {"avionics_bay"}
 # boxed_in's part comes from the web pass pooled with the first pass's
 # segments (docs/discovery.md "Plates beside webs"): at its own 10 x 1000 with
 # beam 4 in 45 s (69 s CPU), at beam 8 in 76 s (132 s CPU); at 8 x 600 or
-# 6 x 600 it has none. maze at beam 4 took as long as at its own beam 8.
-SETTINGS = {"boxed_in": {"beam": 4}, "maze": {}}
+# 6 x 600 it has none. maze: at 10 x 600, beam 4 in 54 s (88 s CPU), at its
+# own 10 x 1000, beam 8 in 71 s (120 s CPU); none at 8 x 1000, beam 4.
+SETTINGS = {"boxed_in": {"beam": 4}, "maze": {"iterations": 600, "beam": 4}}
 
 
 def settings(scene):
