@@ -26,10 +26,8 @@ SECONDS_PER_TARGET="${FUZZ_SECONDS:-60}"
 JOBS="${FUZZ_JOBS:-1}"
 RSS_MB="${FUZZ_RSS_MB:-2048}"
 MALLOC_MB="${FUZZ_MALLOC_MB:-512}"
-export CCACHE_DIR="${CCACHE_DIR:-$HOME/.cache/ccache}"
-# Paths under the checkout are hashed relative to it, so a fresh clone in
-# another folder reuses the cache of an earlier one (the CI's case).
-export CCACHE_BASEDIR="${CCACHE_BASEDIR:-$ROOT}" CCACHE_NOHASHDIR="${CCACHE_NOHASHDIR:-1}"
+# shellcheck source=scripts/ccache_env.sh
+source "$ROOT/scripts/ccache_env.sh"
 
 ALL_TARGETS=(fuzz_problem_json fuzz_mesh_readers)
 REPLAY_ONLY=0

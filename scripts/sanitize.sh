@@ -16,10 +16,8 @@ set -euo pipefail
 ROOT="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 BUILD_DIR="${SANITIZE_BUILD_DIR:-$ROOT/build-sanitize}"
 JOBS="${JOBS:-2}"
-export CCACHE_DIR="${CCACHE_DIR:-$HOME/.cache/ccache}"
-# Paths under the checkout are hashed relative to it, so a fresh clone in
-# another folder reuses the cache of an earlier one (the CI's case).
-export CCACHE_BASEDIR="${CCACHE_BASEDIR:-$ROOT}" CCACHE_NOHASHDIR="${CCACHE_NOHASHDIR:-1}"
+# shellcheck source=scripts/ccache_env.sh
+source "$ROOT/scripts/ccache_env.sh"
 
 bash "$ROOT/scripts/install_deps.sh"
 echo "== configure + build ($BUILD_DIR, ASan + UBSan)"
