@@ -25,8 +25,9 @@ from sheetgen_tools.verify import VerifyOptions, verify_output
 # scenes' own are 10 chains x 1000 iterations, beam 8, seed 1. Measured on the
 # shared 2-core machine (--threads 2) under the envelope at 8ca8d3b: at 6 x
 # 300, beam 4, shelf, corner, wall_standoff, corner_obstacle, slanted and
-# sharp_angles have a valid part in 5-30 s each; maze has none (see SETTINGS) and bulkhead_hole finds none at either (18 s at
-# these, 55 s at its own). boxed_in: see SETTINGS.
+# sharp_angles have a valid part in 5-30 s each; maze and boxed_in have none
+# (see SETTINGS) and bulkhead_hole finds none at either (18 s at these, 55 s
+# at its own).
 REDUCED = {"chains": 6, "iterations": 300, "beam": 4}
 # A scene that has no part under the FAR 25.561 envelope today (docs/scenes.md
 # "Under the envelope"): a box carried through a lightening hole, whose
@@ -35,8 +36,8 @@ REDUCED = {"chains": 6, "iterations": 300, "beam": 4}
 # (tests/native/compose/scene_feasibility_test.cpp). Its run must finish (exit
 # 2: no valid part) with a reason that names the failing check's case; a part
 # it does find is verified like any other. It runs at the reduced settings:
-# the check is the same, and its own settings (the full tier's) cost three
-# times the CPU (95 against 30 s) to end the same way.
+# the check is the same, and its own settings (which bench/compare_bench.py
+# runs) cost three times the CPU (95 against 30 s) to end the same way.
 WITHOUT_PART_UNDER_ENVELOPE = {"bulkhead_hole"}
 # Not here: the avionics bay. Under its envelope it takes 407 s at its own
 # settings (10/10 parts; docs/scenes.md) and the reduced settings leave two
