@@ -338,6 +338,7 @@ struct SolveArgs {
   bool no_lips = false;
   bool no_web_roots = false;
   bool no_flat_fallback = false;
+  bool no_sizing = false;
   int seed_retries = sheetgen::GenerateOptions{}.seed_retries;
 };
 
@@ -358,6 +359,7 @@ int solve(const SolveArgs& a) {
   options.web_fallback = !a.no_web_roots;
   options.flat_fallback = !a.no_flat_fallback;
   options.seed_retries = a.seed_retries;
+  options.sizing = !a.no_sizing;
   sheetgen::GenerateProgress progress;
   std::signal(SIGINT, on_sigint);
   std::signal(SIGTERM, on_sigint);
@@ -464,6 +466,8 @@ CLI::App* add_solve_command(CLI::App& app, SolveArgs& a) {
                       "do not search a load again with web roots when the first search finds no valid part");
   solve_cmd->add_flag("--no-flat-fallback", a.no_flat_fallback,
                       "do not search a load a third time with flat extensions when no search found a valid part");
+  solve_cmd->add_flag("--no-sizing", a.no_sizing,
+                      "keep each answer as the composition found it, without narrowing its tabs to its limits");
   solve_cmd->add_option("--seed-retries", a.seed_retries,
                         "searches of a load with fresh seeds after every other pass found no valid part; one whose own "
                         "segments give no part composes them with those found before it (default 2)")

@@ -347,10 +347,13 @@ void BeamSearch::print_level(int level, const std::vector<int>& fresh, const std
       areas += " " + std::to_string(g ? g->rivet_area : -9);
     }
     const bool in_beam = std::find(beam.begin(), beam.end(), i) != beam.end();
-    std::fprintf(stderr, "[candidate] level %d%s segs [%s ] ra [%s ] %s%s area %.1f cm2 C/Cmax %.3g MS %.3g score %.4g\n", level,
+    std::fprintf(stderr,
+                 "[candidate] level %d%s segs [%s ] ra [%s ] %s%s area %.1f cm2 C/Cmax %.3g MS %.3g score %.4g cost %.4g%s%s\n",
+                 level,
                  in_beam ? " BEAM" : "", segs.c_str(), areas.c_str(), c.geometry_ok ? "ok" : "FAIL ",
                  c.geometry_ok ? "" : c.message.c_str(), c.area * 1e4, c.analysed ? c.fem.compliance / c.fem.compliance_limit : -1.0,
-                 c.analysed ? c.fem.margin_of_safety : -9.0, c.analysed ? beam_score(c, problem_) : -1.0);
+                 c.analysed ? c.fem.margin_of_safety : -9.0, c.analysed ? beam_score(c, problem_) : -1.0, c.cost,
+                 c.over_cost_bound ? " OVER-COST-BOUND" : "", c.screened_out ? " SCREENED-OUT" : "");
   }
 }
 

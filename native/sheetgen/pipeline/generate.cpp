@@ -142,6 +142,7 @@ GenerateResult result_settings(const Problem& problem, const GenerateOptions& op
   result.web_fallback = options.web_fallback;
   result.flat_fallback = options.flat_fallback && !problem.manufacturing.flat_extensions;
   result.seed_retries = options.seed_retries;
+  result.sizing = options.sizing;
   return result;
 }
 
@@ -224,9 +225,20 @@ GenerateResult generate(const Problem& input, const GenerateOptions& options, Ge
       }
       out = std::move(search.answer);
       if (progress) progress->stage = static_cast<int>(Stage::Plan);
-      plan_answer(search.flat_scene ? *search.flat_scene : env->problem(), li, out);
+      const Problem& answer_scene = search.flat_scene ? *search.flat_scene : env->problem();
+      plan_answer(answer_scene, li, out);
       if (out.ok && !out.part.segments.empty())
         environments.add_part(part_as_obstacle(out.load, out.realised, env->problem().material.thickness));
+      // Sizing after the part joined the environment as the search left it:
+      // the later loads search around that sheet, so their searches are the
+      // same with and without sizing, and the sized part, which only loses
+      // sheet, stays clear of everything they build (docs/pipeline.md "Sizing").
+      if (out.ok && options.sizing) {
+        search.answer = std::move(out);
+        size_load_answer(*env, li, options, search);
+        out = std::move(search.answer);
+        if (out.sizing_cuts > 0) plan_answer(answer_scene, li, out);
+      }
     }
     out.total_seconds = seconds_since(load_start);
     result.loads.push_back(std::move(out));

@@ -36,6 +36,9 @@ struct GenerateOptions {
   // part composes them pooled with those found before it (docs/pipeline.md
   // step 4d); --seed-retries N.
   int seed_retries = 2;
+  // The answer of each load is narrowed tab by tab while it stays valid
+  // (docs/pipeline.md "Sizing"); off: --no-sizing.
+  bool sizing = true;
   ComposeOptions compose;      // beam_width and threads are taken from the settings above
 };
 
@@ -82,6 +85,14 @@ struct LoadOutcome {
   bool press_fallback = false;
   int press_rejected = 0;            // candidates the press-brake check rejected (not analysed), over every pass
   long long press_rejected_segments = 0;  // segments discovery's press-brake filter dropped, over every pass
+  // Sizing (docs/pipeline.md "Sizing"): whether it ran on this answer, trial
+  // parts analysed, cuts kept, and the answer's cost (m^2, search score) and
+  // area (m^2) before it.
+  bool sized = false;
+  int sizing_trials = 0, sizing_cuts = 0;
+  double sizing_cost_before = 0, sizing_area_before = 0;
+  bool sizing_final_check_failed = false;
+  double sizing_seconds = 0;
   double environment_seconds = 0, discovery_seconds = 0, composition_seconds = 0, total_seconds = 0;
 };
 
@@ -94,6 +105,7 @@ struct GenerateResult {
   bool web_fallback = true;           // a second search with web roots where the first found no part
   bool flat_fallback = true;          // a third search with flat extensions where neither found one
   int seed_retries = 2;               // at most this many searches with fresh seeds where no pass found a part
+  bool sizing = true;                 // answers narrowed to their limits
   bool cancelled = false;
   double seconds = 0;
   bool all_ok() const;

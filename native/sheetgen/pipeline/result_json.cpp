@@ -107,8 +107,14 @@ void add_search_fields(json& p, const LoadOutcome& o) {
   p["press_fallback"] = o.press_fallback;
   p["press_rejected"] = o.press_rejected;
   p["press_rejected_segments"] = o.press_rejected_segments;
+  if (o.sized)
+    p["sizing"] = {{"trials", o.sizing_trials},
+                   {"cuts", o.sizing_cuts},
+                   {"area_before_m2", o.sizing_area_before},
+                   {"search_score_before_m2", o.sizing_cost_before},
+                   {"final_check_failed", o.sizing_final_check_failed}};
   p["timing"] = {{"environment_s", o.environment_seconds}, {"discovery_s", o.discovery_seconds},
-                 {"composition_s", o.composition_seconds}, {"total_s", o.total_seconds}};
+                 {"composition_s", o.composition_seconds}, {"sizing_s", o.sizing_seconds}, {"total_s", o.total_seconds}};
 }
 
 // One entry of parts[].
@@ -141,7 +147,8 @@ json result_json(const Problem& problem, const GenerateResult& result, const std
                    {"self_rivet", result.self_rivet},         {"stiffening_lips", result.stiffening_lips},
                    {"web_fallback", result.web_fallback},
                    {"flat_fallback", result.flat_fallback},
-                   {"seed_retries", result.seed_retries}};
+                   {"seed_retries", result.seed_retries},
+                   {"sizing", result.sizing}};
   doc["timing"] = {{"total_s", result.seconds}};
   return doc;
 }

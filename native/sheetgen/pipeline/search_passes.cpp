@@ -10,6 +10,7 @@
 #include <utility>
 #include <vector>
 
+#include "sheetgen/compose/sizing.hpp"
 #include "sheetgen/discovery/feeler.hpp"
 #include "sheetgen/env/environment.hpp"
 
@@ -315,6 +316,31 @@ LoadSearch search_passes(const Problem& scene, const Environment& env, int li, c
 }
 
 }  // namespace
+
+void size_load_answer(const Environment& env, int li, const GenerateOptions& options, LoadSearch& s) {
+  const Problem& scene = env.problem();
+  LoadOutcome& out = s.answer;
+  if (!options.sizing || !s.finished || !out.ok) return;
+  Problem searched = s.flat_scene ? *s.flat_scene : scene;
+  if (out.press_fallback) searched.manufacturing.press_brake_required = false;
+  SizingOptions so;
+  so.threads = scene.search.threads;
+  const auto t0 = std::chrono::steady_clock::now();
+  SizingResult sized = size_part(searched, env, li, out.part, so);
+  out.sized = true;
+  out.sizing_trials = sized.trials;
+  out.sizing_cuts = sized.final_check_failed ? 0 : sized.cuts;
+  out.sizing_cost_before = sized.cost_before;
+  out.sizing_area_before = sized.area_before;
+  out.sizing_final_check_failed = sized.final_check_failed;
+  out.fem_calls += sized.trials + (sized.cuts > 0 ? 1 : 0);
+  out.part = std::move(sized.part);
+  out.sizing_seconds = seconds_since(t0);
+  if (std::getenv("SHEETGEN_COMPOSE_DEBUG"))
+    std::fprintf(stderr, "[sizing] %s: %d trials, %d cuts%s, cost %.5g -> %.5g m2, area %.1f -> %.1f cm2, %.1f s\n",
+                 out.load.c_str(), sized.trials, sized.cuts, sized.final_check_failed ? " (failed at the default mesh)" : "",
+                 sized.cost_before, out.part.cost, sized.area_before * 1e4, out.part.area * 1e4, out.sizing_seconds);
+}
 
 LoadSearch search_load(const Environment& env, int li, const LoadOutcome& start, const GenerateOptions& options,
                        bool flat_fallback, GenerateProgress* progress) {

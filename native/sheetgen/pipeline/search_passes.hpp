@@ -33,4 +33,10 @@ struct LoadSearch {
 LoadSearch search_load(const Environment& env, int load_index, const LoadOutcome& start, const GenerateOptions& options,
                        bool flat_fallback, GenerateProgress* progress);
 
+// Sizing of the valid answer of a finished search (options.sizing,
+// docs/pipeline.md "Sizing"), in the grammar and checks it was found with: a
+// flat-extension answer keeps its flat tabs, a press-brake fallback's answer
+// is not held to the tools. Fills the answer's sizing fields.
+void size_load_answer(const Environment& env, int load_index, const GenerateOptions& options, LoadSearch& search);
+
 }  // namespace sheetgen

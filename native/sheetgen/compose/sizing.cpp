@@ -1,0 +1,130 @@
+#include "sheetgen/compose/sizing.hpp"
+
+#include <tbb/parallel_for.h>
+#include <tbb/task_arena.h>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <optional>
+#include <utility>
+
+#include "sheetgen/fem/plate_mesher.hpp"
+#include "sheetgen/part/realisation.hpp"
+
+namespace sheetgen {
+
+bool narrow_tab(Part& target, int tab, double cut_start, double cut_end, double min_width) {
+  const RealisedPart before = realise(target);
+  Part part = target;
+  TabParameters& p = part.tabs[tab].params;
+  if (p.w - cut_start - cut_end < min_width - 1e-12) return false;
+  p.d += cut_start;
+  p.w -= cut_start + cut_end;
+  // Children come after their parents (Part's invariant), so one pass re-hangs
+  // every descendant of the narrowed tab on its parent's new edge.
+  std::vector<char> moved(part.size(), 0);
+  moved[tab] = 1;
+  for (int c = tab + 1; c < part.size(); ++c) {
+    Tab& t = part.tabs[c];
+    if (t.parent < 0 || !moved[t.parent]) continue;
+    moved[c] = 1;
+    const RealisedPart now = realise(part);
+    const auto& pc = now.tabs[t.parent].corners;
+    const Vec3 a = pc[t.parent_edge], b = pc[(t.parent_edge + 1) % pc.size()];
+    const double length = (b - a).norm();
+    const double start = (before.tabs[c].origin - a).dot((b - a) / length);
+    const double lo = std::max(0.0, start), hi = std::min(length, start + t.params.w);
+    if (hi - lo < min_width - 1e-12) return false;
+    t.params.d = lo;
+    t.params.w = hi - lo;
+  }
+  target = std::move(part);
+  return true;
+}
+
+namespace {
+
+double trial_element_size(const Part& part, const Problem& problem, double factor) {
+  std::vector<std::vector<Vec3>> polys;
+  for (const auto& t : realise(part).tabs) polys.push_back(t.corners);
+  return factor * default_element_size(polys, problem.material.thickness);
+}
+
+// A tab sizing may narrow: not the base, not a rivet flange (it follows its
+// parent), not a gusset or a tab a gusset is riveted to.
+bool sizable(const Part& part, int tab) {
+  const Tab& t = part.tabs[tab];
+  return tab > 0 && t.rivet_area < 0 && t.riveted_to < 0;
+}
+
+struct Trials {
+  const Problem& problem;
+  const Environment& env;
+  int load_index;
+  const SizingOptions& options;
+  tbb::task_arena& arena;
+  int evaluated = 0;
+
+  // The three placements of one cut (centred, at the start, at the end),
+  // evaluated side by side; the first valid one in that order that is cheaper
+  // than `current`, if any. The same answer for any number of threads.
+  std::optional<Candidate> first_cheaper(const Candidate& current, int tab, double cut) {
+    const double min_w = problem.manufacturing.min_tab_width;
+    const std::array<std::array<double, 2>, 3> cuts{{{cut / 2, cut / 2}, {cut, 0.0}, {0.0, cut}}};
+    std::array<std::optional<Candidate>, 3> out;
+    arena.execute([&] {
+      tbb::parallel_for(0, 3, [&](int k) {
+        Candidate trial = current;
+        if (!narrow_tab(trial.part, tab, cuts[k][0], cuts[k][1], min_w)) return;
+        const double h = trial_element_size(trial.part, problem, options.trial_element_factor);
+        out[k] = evaluate_part(problem, env, load_index, std::move(trial), h, nullptr, current.cost);
+      });
+    });
+    for (const auto& c : out) evaluated += c.has_value();
+    for (auto& c : out)
+      if (c && c->valid() && c->cost < current.cost) return std::move(c);
+    return std::nullopt;
+  }
+};
+
+}  // namespace
+
+SizingResult size_part(const Problem& problem, const Environment& env, int load_index, const Candidate& answer,
+                       const SizingOptions& options) {
+  SizingResult r;
+  r.part = answer;
+  r.cost_before = answer.cost;
+  r.area_before = answer.area;
+  if (!answer.self_rivets.empty()) return r;
+  tbb::task_arena arena(options.threads > 0 ? options.threads : tbb::this_task_arena::max_concurrency());
+  Trials trials{problem, env, load_index, options, arena};
+  const double min_w = problem.manufacturing.min_tab_width;
+  Candidate current = answer;
+  // Largest tabs first (w l; ties by index): where the sheet is.
+  std::vector<int> order;
+  for (int tab = 1; tab < current.part.size(); ++tab)
+    if (sizable(current.part, tab)) order.push_back(tab);
+  std::stable_sort(order.begin(), order.end(), [&](int a, int b) {
+    const TabParameters &pa = current.part.tabs[a].params, &pb = current.part.tabs[b].params;
+    return pa.w * pa.l > pb.w * pb.l;
+  });
+  for (double share : options.shares)
+    for (int tab : order) {
+      if (trials.evaluated >= options.max_trials) break;
+      const double cut = share * (current.part.tabs[tab].params.w - min_w);
+      if (cut < options.min_cut) continue;
+      if (auto better = trials.first_cheaper(current, tab, cut)) {
+        current = std::move(*better);
+        ++r.cuts;
+      }
+    }
+  r.trials = trials.evaluated;
+  if (r.cuts == 0) return r;
+  Candidate checked = evaluate_part(problem, env, load_index, current, 0.0);
+  r.final_check_failed = !checked.valid();
+  if (!r.final_check_failed) r.part = std::move(checked);
+  return r;
+}
+
+}  // namespace sheetgen
