@@ -109,6 +109,7 @@ SizingResult size_part(const Problem& problem, const Environment& env, int load_
     const TabParameters &pa = current.part.tabs[a].params, &pb = current.part.tabs[b].params;
     return pa.w * pa.l > pb.w * pb.l;
   });
+  std::vector<Candidate> kept;  // the part after each cut, in order
   for (double share : options.shares)
     for (int tab : order) {
       if (trials.evaluated >= options.max_trials) break;
@@ -116,14 +117,23 @@ SizingResult size_part(const Problem& problem, const Environment& env, int load_
       if (cut < options.min_cut) continue;
       if (auto better = trials.first_cheaper(current, tab, cut)) {
         current = std::move(*better);
-        ++r.cuts;
+        kept.push_back(current);
       }
     }
   r.trials = trials.evaluated;
-  if (r.cuts == 0) return r;
-  Candidate checked = evaluate_part(problem, env, load_index, current, 0.0);
-  r.final_check_failed = !checked.valid();
-  if (!r.final_check_failed) r.part = std::move(checked);
+  // The default mesh is finer than the search mesh, so the last cut may pass
+  // on the one and not on the other: step back through the cuts, at most
+  // final_checks of them, and keep the first that passes there.
+  for (int k = static_cast<int>(kept.size()) - 1; k >= 0 && r.final_checks < options.final_checks; --k) {
+    Candidate checked = evaluate_part(problem, env, load_index, kept[k], 0.0);
+    ++r.final_checks;
+    if (checked.valid()) {
+      r.part = std::move(checked);
+      r.cuts = k + 1;
+      return r;
+    }
+  }
+  r.final_check_failed = !kept.empty();
   return r;
 }
 

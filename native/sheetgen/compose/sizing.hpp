@@ -29,18 +29,22 @@ struct SizingOptions {
   int max_trials = 24;
   // Trials are analysed on the search mesh (this many times the default
   // element size, as in the composition); the sized part is checked once more
-  // at the default mesh, and kept only if it passes there.
+  // at the default mesh, and kept only if it passes there. When it does not,
+  // the part before its last cut is checked, and so on, at most final_checks
+  // times; then the answer stays as it was.
   double trial_element_factor = 1.5;
+  int final_checks = 3;
   int threads = 0;  // 0 = all cores; the result does not depend on it
 };
 
 struct SizingResult {
   Candidate part;           // the sized part, valid at the default mesh (the input when nothing was cut)
   int trials = 0;           // trial parts evaluated (geometry, cost and FEM)
-  int cuts = 0;             // trials kept
+  int cuts = 0;             // cuts in the sized part
+  int final_checks = 0;     // analyses at the default mesh
   double cost_before = 0;   // m^2, search score (core/cost_model.hpp) of the input
   double area_before = 0;   // m^2, flat-pattern material of the input
-  bool final_check_failed = false;  // the sized part missed a limit at the default mesh, so the input was kept
+  bool final_check_failed = false;  // every sized part checked missed a limit at the default mesh: the input was kept
 };
 
 // Narrows tab `tab` of `part` by cut_start (m) at its root start and cut_end at

@@ -329,11 +329,11 @@ void size_load_answer(const Environment& env, int li, const GenerateOptions& opt
   SizingResult sized = size_part(searched, env, li, out.part, so);
   out.sized = true;
   out.sizing_trials = sized.trials;
-  out.sizing_cuts = sized.final_check_failed ? 0 : sized.cuts;
+  out.sizing_cuts = sized.cuts;
   out.sizing_cost_before = sized.cost_before;
   out.sizing_area_before = sized.area_before;
   out.sizing_final_check_failed = sized.final_check_failed;
-  out.fem_calls += sized.trials + (sized.cuts > 0 ? 1 : 0);
+  out.fem_calls += sized.trials + sized.final_checks;
   out.part = std::move(sized.part);
   out.sizing_seconds = seconds_since(t0);
   if (std::getenv("SHEETGEN_COMPOSE_DEBUG"))
