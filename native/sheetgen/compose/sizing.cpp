@@ -52,7 +52,7 @@ double trial_element_size(const Part& part, const Problem& problem, double facto
 }
 
 // A tab sizing may narrow: not the base, not a rivet flange (it follows its
-// parent), not a gusset or a tab a gusset is riveted to.
+// parent), not a gusset (parts with gussets are not sized at all: size_part).
 bool sizable(const Part& part, int tab) {
   const Tab& t = part.tabs[tab];
   return tab > 0 && t.rivet_area < 0 && t.riveted_to < 0;

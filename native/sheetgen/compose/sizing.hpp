@@ -23,7 +23,8 @@ struct SizingOptions {
   // every tab, largest tab first.
   std::vector<double> shares{0.5, 0.25, 0.125};
   double min_cut = 1e-3;  // m: a smaller cut is not tried
-  // Trials per part at most. The tabs are tried largest (w l) first, so the
+  // No new cut is started once this many trials were evaluated (a cut is up
+  // to three trials). The tabs are tried largest (w l) first, so the
   // budget goes where the sheet is; it bounds the time on large parts, where
   // each trial is a large analysis (docs/pipeline.md "Sizing").
   int max_trials = 24;
