@@ -5,6 +5,7 @@
 
 #include "sheetgen/env/environment.hpp"
 #include "sheetgen/fem/fem_error.hpp"
+#include "sheetgen/fem/plate_mesher.hpp"
 #include "sheetgen/part/manufacturing_plan.hpp"
 #include "sheetgen/part/realisation.hpp"
 
@@ -24,6 +25,12 @@ int count_rivets(const Problem& problem, const Candidate& c, const RealisedPart&
   return flange + static_cast<int>(c.self_rivets.size());
 }
 }  // namespace
+
+double part_default_element_size(const Part& part, double thickness) {
+  std::vector<std::vector<Vec3>> polys;
+  for (const auto& t : realise(part).tabs) polys.push_back(t.corners);
+  return default_element_size(polys, thickness);
+}
 
 Candidate evaluate_part(const Problem& problem, const Environment& env, int load_index, Candidate c, double element_size,
                         ShellSolver* solver, double cost_bound) {

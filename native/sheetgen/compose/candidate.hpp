@@ -38,6 +38,11 @@ struct Candidate {
   bool valid() const { return geometry_ok && analysed && fem.passes(); }
 };
 
+// The default FEM element size of a part (m): fem's default_element_size of
+// its realised tabs at sheet thickness `thickness` (m). The composition's
+// search and screening meshes and sizing's trials are multiples of it.
+double part_default_element_size(const Part& part, double thickness);
+
 // Evaluates one subset (exposed for tests): assembly, validity, flat pattern,
 // bend sequence, FEM. element_size <= 0: the default mesh.
 Candidate evaluate_candidate(const Problem& problem, const Environment& env, int load_index, const Part& base,

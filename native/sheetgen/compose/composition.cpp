@@ -18,7 +18,6 @@
 #include "sheetgen/compose/self_rivet.hpp"
 #include "sheetgen/compose/stiffening_lip.hpp"
 #include "sheetgen/env/environment.hpp"
-#include "sheetgen/fem/plate_mesher.hpp"
 #include "sheetgen/part/realisation.hpp"
 
 namespace sheetgen {
@@ -204,9 +203,7 @@ double BeamSearch::cost_bound() const {
 }
 
 double BeamSearch::default_size(const Part& part) const {
-  std::vector<std::vector<Vec3>> polys;
-  for (const auto& t : realise(part).tabs) polys.push_back(t.corners);
-  return default_element_size(polys, problem_.material.thickness);
+  return part_default_element_size(part, problem_.material.thickness);
 }
 
 // Level 1: every segment with its ancestors. Web roots (rivet_area < 0) reach

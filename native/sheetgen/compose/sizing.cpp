@@ -9,7 +9,6 @@
 #include <optional>
 #include <utility>
 
-#include "sheetgen/fem/plate_mesher.hpp"
 #include "sheetgen/part/realisation.hpp"
 
 namespace sheetgen {
@@ -45,12 +44,6 @@ bool narrow_tab(Part& target, int tab, double cut_start, double cut_end, double 
 
 namespace {
 
-double trial_element_size(const Part& part, const Problem& problem, double factor) {
-  std::vector<std::vector<Vec3>> polys;
-  for (const auto& t : realise(part).tabs) polys.push_back(t.corners);
-  return factor * default_element_size(polys, problem.material.thickness);
-}
-
 // A tab sizing may narrow: not the base, not a rivet flange (it follows its
 // parent), not a gusset (parts with gussets are not sized at all: size_part).
 bool sizable(const Part& part, int tab) {
@@ -77,7 +70,7 @@ struct Trials {
       tbb::parallel_for(0, 3, [&](int k) {
         Candidate trial = current;
         if (!narrow_tab(trial.part, tab, cuts[k][0], cuts[k][1], min_w)) return;
-        const double h = trial_element_size(trial.part, problem, options.trial_element_factor);
+        const double h = options.trial_element_factor * part_default_element_size(trial.part, problem.material.thickness);
         out[k] = evaluate_part(problem, env, load_index, std::move(trial), h, nullptr, current.cost);
       });
     });

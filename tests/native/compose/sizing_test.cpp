@@ -5,7 +5,7 @@
 
 #include <gtest/gtest.h>
 
-#include "sheet_rules.hpp"
+#include "leg_on_floor.hpp"
 
 #include <cmath>
 
@@ -16,38 +16,14 @@
 namespace sheetgen {
 namespace {
 
-// A box 0.25 m above a floor, pushed 10 N along +x; the part: the base under the
-// box, a 100 mm wide leg bent 90 deg down from the base's -x edge, and a
-// flange as wide as the leg bent back onto the floor. The leg works in
-// bending across its plane, so its compliance grows as its width falls.
-struct SizingFixture {
-  Problem problem;
-  Part part;
-};
+// The compose tests' leg (leg_on_floor.hpp) pushed 10 N along +x (the
+// full-width leg has a margin of safety near 2.6), with a compliance limit:
+// its compliance grows as its width falls.
+using SizingFixture = testing::LegOnFloor;
 
 SizingFixture sizing_leg(double compliance_limit) {
-  SizingFixture f;
-  Problem& p = f.problem;
-  p.source = "<test>";
-  EnvironmentMesh floor;
-  floor.name = "floor";
-  floor.mesh.vertices = {Vec3(-0.5, -0.5, 0), Vec3(0.5, -0.5, 0), Vec3(0.5, 0.5, 0), Vec3(-0.5, 0.5, 0)};
-  floor.mesh.triangles = {{0, 1, 2}, {0, 2, 3}};  // normal +z
-  p.meshes.push_back(floor);
-  p.rivet_areas.push_back(RivetAreaSpec{"floor", 0, {0, 1}, 1.0});
-  Load l;
-  l.name = "box";
-  l.center = Vec3(0, 0, 0.28);
-  l.size = Vec3(0.1, 0.1, 0.06);
-  l.force = Vec3(10, 0, 0);  // N: the full-width leg has a margin of safety near 2.6
-  p.loads.push_back(l);
-  p.requirements.max_compliance = compliance_limit;
-  testing::set_sheet_rules(p);
-  const double t = p.material.thickness;
-  f.part = make_base_part(l, 0, t);
-  const double z_base = realise(f.part).tabs[0].corners[0].z();
-  const int leg = f.part.add_tab(0, 3, TabParameters{0.0, 0.1, z_base - 0.5 * t, 0, 0, -M_PI / 2});
-  f.part.add_tab(leg, 2, TabParameters{0.0, 0.1, 0.03, 0, 0, M_PI / 2}, 0);
+  SizingFixture f = testing::leg_on_floor(10.0);
+  f.problem.requirements.max_compliance = compliance_limit;
   return f;
 }
 

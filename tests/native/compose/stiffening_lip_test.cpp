@@ -5,7 +5,7 @@
 
 #include <gtest/gtest.h>
 
-#include "sheet_rules.hpp"
+#include "leg_on_floor.hpp"
 
 #include <cmath>
 
@@ -18,44 +18,12 @@
 namespace sheetgen {
 namespace {
 
-// A box 0.25 m above a floor; the part: base under the box, a leg bent 90 deg
-// down from the base's -x edge, and a flange bent back onto the floor.
-// The force pushes along +x, across the leg's plane: the leg works in bending.
-struct Fixture {
-  Problem problem;
-  Part part;
-};
-
-Fixture leg_on_floor() {
-  Fixture f;
-  Problem& p = f.problem;
-  p.source = "<test>";
-  EnvironmentMesh floor;
-  floor.name = "floor";
-  floor.mesh.vertices = {Vec3(-0.5, -0.5, 0), Vec3(0.5, -0.5, 0), Vec3(0.5, 0.5, 0), Vec3(-0.5, 0.5, 0)};
-  floor.mesh.triangles = {{0, 1, 2}, {0, 2, 3}};  // normal +z
-  p.meshes.push_back(floor);
-  p.rivet_areas.push_back(RivetAreaSpec{"floor", 0, {0, 1}, 1.0});
-  Load l;
-  l.name = "box";
-  l.center = Vec3(0, 0, 0.28);
-  l.size = Vec3(0.1, 0.1, 0.06);
-  l.force = Vec3(40, 0, 0);
-  p.loads.push_back(l);
-  testing::set_sheet_rules(p);
-  const double t = p.material.thickness;
-
-  f.part = make_base_part(l, 0, t);
-  const double z_base = realise(f.part).tabs[0].corners[0].z();
-  // Base edge 3 is the -x side (docs/grammar.md); theta3 = -90 deg folds down.
-  // The leg ends where the flange's mid-surface lies t/2 above the floor.
-  const int leg = f.part.add_tab(0, 3, TabParameters{0.0, 0.1, z_base - 0.5 * t, 0, 0, -M_PI / 2});
-  f.part.add_tab(leg, 2, TabParameters{0.0, 0.1, 0.03, 0, 0, M_PI / 2}, 0);
-  return f;
-}
+// The compose tests' leg (leg_on_floor.hpp), pushed 40 N along +x, across
+// the leg's plane: the leg works in bending.
+testing::LegOnFloor lip_leg() { return testing::leg_on_floor(40.0); }
 
 TEST(StiffeningLip, ChannelOnTheLegKeepsThePartValidAndStiffensIt) {
-  const Fixture f = leg_on_floor();
+  const testing::LegOnFloor f = lip_leg();
   const Problem& p = f.problem;
   const Environment env(p);
   const RealisedPart rp = realise(f.part);
@@ -93,7 +61,7 @@ TEST(StiffeningLip, ChannelOnTheLegKeepsThePartValidAndStiffensIt) {
 }
 
 TEST(StiffeningLip, NothingToLipLeavesThePartAlone) {
-  Fixture f = leg_on_floor();
+  testing::LegOnFloor f = lip_leg();
   const Environment env(f.problem);
   LipOptions o;
   o.min_edge_length = 1.0;  // no edge that long
