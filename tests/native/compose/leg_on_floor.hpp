@@ -6,6 +6,7 @@
 // plane.
 #include <cmath>
 
+#include "../common/scene_fixture.hpp"
 #include "sheet_rules.hpp"
 #include "sheetgen/core/problem.hpp"
 #include "sheetgen/part/part.hpp"
@@ -25,8 +26,7 @@ inline LegOnFloor leg_on_floor(double force_x) {
   p.source = "<test>";
   EnvironmentMesh floor;
   floor.name = "floor";
-  floor.mesh.vertices = {Vec3(-0.5, -0.5, 0), Vec3(0.5, -0.5, 0), Vec3(0.5, 0.5, 0), Vec3(-0.5, 0.5, 0)};
-  floor.mesh.triangles = {{0, 1, 2}, {0, 2, 3}};  // normal +z
+  floor.mesh = testing_scenes::rectangle(-0.5, 0.5, -0.5, 0.5, 0.0);  // normal +z
   p.meshes.push_back(floor);
   p.rivet_areas.push_back(RivetAreaSpec{"floor", 0, {0, 1}, 1.0});
   Load l;
