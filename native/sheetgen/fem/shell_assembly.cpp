@@ -1,5 +1,7 @@
 #include "sheetgen/fem/shell_assembly.hpp"
 
+#include "sheetgen/fem/node_block_pattern.hpp"
+
 namespace sheetgen {
 
 DofMap build_dof_map(const ShellModel& m) {
@@ -20,7 +22,10 @@ DofMap build_dof_map(const ShellModel& m) {
   for (int i = 0; i < n; ++i) {
     if (!active[i] || slave_link[i] >= 0) continue;
     for (int d = 0; d < 6; ++d)
-      if (!fixed[i][d]) red[6 * i + d] = map.reduced++;
+      if (!fixed[i][d]) {
+        red[6 * i + d] = map.reduced++;
+        map.owner.push_back(i);
+      }
   }
   map.start.assign(6 * static_cast<size_t>(n) + 1, 0);
   map.index.reserve(6 * static_cast<size_t>(n));
@@ -55,11 +60,12 @@ namespace {
 
 using Triplets = std::vector<Eigen::Triplet<double, int>>;
 
-// Adds T_a^T A T_b for the DOF lists (full DOF ids) `dofs` of one element or
-// node, lower triangle only.
-template <int N>
-void add_triplets(Triplets& triplets, const DofMap& map, const std::array<int, N>& dofs,
-                  const Eigen::Matrix<double, N, N>& A) {
+// Calls sink(ia, ib, value) for each term of T_a^T A T_b, the DOF lists
+// (full DOF ids) `dofs` of one element or node, lower triangle only, in a
+// fixed order (the order the terms of an entry are summed in).
+template <int N, class Sink>
+void for_each_lower_term(const DofMap& map, const std::array<int, N>& dofs, const Eigen::Matrix<double, N, N>& A,
+                         Sink&& sink) {
   int beg[N], end[N];
   for (int a = 0; a < N; ++a) {
     beg[a] = map.start[dofs[a]];
@@ -73,9 +79,35 @@ void add_triplets(Triplets& triplets, const DofMap& map, const std::array<int, N
         for (int pb = beg[b]; pb < end[b]; ++pb) {
           const int ib = map.index[pb];
           if (ib > ia) continue;  // lower triangle only
-          triplets.emplace_back(ia, ib, ca * map.coef[pb] * A(a, b));
+          sink(ia, ib, ca * map.coef[pb] * A(a, b));
         }
     }
+}
+
+template <int N>
+void add_triplets(Triplets& triplets, const DofMap& map, const std::array<int, N>& dofs,
+                  const Eigen::Matrix<double, N, N>& A) {
+  for_each_lower_term<N>(map, dofs, A, [&](int ia, int ib, double v) { triplets.emplace_back(ia, ib, v); });
+}
+
+// The same terms added into the pattern's values, in the same order.
+template <int N>
+void add_in_place(double* values, NodeBlockPattern& pattern, const DofMap& map, const std::array<int, N>& dofs,
+                  const Eigen::Matrix<double, N, N>& A) {
+  pattern.begin_block(map, dofs.data(), N);
+  for_each_lower_term<N>(map, dofs, A, [&](int ia, int ib, double v) { values[pattern.position(ia, ib)] += v; });
+}
+
+// The full DOF ids of a triangle's three nodes and of one node.
+std::array<int, 18> element_dofs(const std::array<int, 3>& t) {
+  std::array<int, 18> dofs;
+  for (int a = 0; a < 18; ++a) dofs[a] = 6 * t[a / 6] + a % 6;
+  return dofs;
+}
+std::array<int, 6> node_dofs(int node) {
+  std::array<int, 6> dofs;
+  for (int a = 0; a < 6; ++a) dofs[a] = 6 * node + a;
+  return dofs;
 }
 
 std::uint64_t fnv1a(const void* data, size_t bytes, std::uint64_t h) {
@@ -89,30 +121,47 @@ std::uint64_t fnv1a(const void* data, size_t bytes, std::uint64_t h) {
 
 }  // namespace
 
-SparseMatrix assemble_elements(const ShellModel& m, const DofMap& map,
-                               const std::function<Matrix18d(int element)>& element_matrix,
-                               const std::vector<NodalBlock>& nodal_blocks) {
+SparseMatrix assemble_elements_by_triplets(const ShellModel& m, const DofMap& map,
+                                           const std::function<Matrix18d(int element)>& element_matrix,
+                                           const std::vector<NodalBlock>& nodal_blocks) {
   const int n_elem = static_cast<int>(m.triangles.size());
   // One list per thread, emptied and refilled by every assembly: it is the
-  // largest buffer of an FEM call (16 B x 171 per element, 30 MB for 11 000
-  // elements), and a fresh one each call was most of a solve's page faults
-  // (docs/benchmarks.md "Allocator").
+  // largest buffer of a triplet assembly (16 B x 171 per element, 30 MB for
+  // 11 000 elements), and a fresh one each call was most of a solve's page
+  // faults (docs/benchmarks.md "Allocator").
   thread_local Triplets triplets;
   triplets.clear();
   triplets.reserve(static_cast<size_t>(n_elem) * 171 + nodal_blocks.size() * 21);  // 18*19/2 per element
   for (int e = 0; e < n_elem; ++e) {
-    const auto& t = m.triangles[e];
-    std::array<int, 18> dofs;
-    for (int a = 0; a < 18; ++a) dofs[a] = 6 * t[a / 6] + a % 6;
-    add_triplets<18>(triplets, map, dofs, element_matrix(e));
+    add_triplets<18>(triplets, map, element_dofs(m.triangles[e]), element_matrix(e));
   }
-  for (const NodalBlock& b : nodal_blocks) {
-    std::array<int, 6> dofs;
-    for (int a = 0; a < 6; ++a) dofs[a] = 6 * b.node + a;
-    add_triplets<6>(triplets, map, dofs, b.matrix);
-  }
+  for (const NodalBlock& b : nodal_blocks) add_triplets<6>(triplets, map, node_dofs(b.node), b.matrix);
   SparseMatrix A(map.reduced, map.reduced);
   A.setFromTriplets(triplets.begin(), triplets.end());
+  return A;
+}
+
+SparseMatrix assemble_elements(const ShellModel& m, const DofMap& map,
+                               const std::function<Matrix18d(int element)>& element_matrix,
+                               const std::vector<NodalBlock>& nodal_blocks) {
+  // One pattern workspace per thread: its arrays are sized by the model and
+  // reused by every assembly (no allocation churn, docs/benchmarks.md "Allocator").
+  thread_local NodeBlockPattern pattern;
+  std::vector<int> block_nodes;
+  for (const NodalBlock& b : nodal_blocks) block_nodes.push_back(b.node);
+  if (!pattern.build(m, map, block_nodes)) return assemble_elements_by_triplets(m, map, element_matrix, nodal_blocks);
+  SparseMatrix A(map.reduced, map.reduced);
+  A.resizeNonZeros(pattern.nonzeros());
+  std::copy(pattern.column_starts().begin(), pattern.column_starts().end(), A.outerIndexPtr());
+  std::copy(pattern.rows().begin(), pattern.rows().end(), A.innerIndexPtr());
+  // -0.0 + v is v for every v (also -0.0), so each entry ends as the sum the
+  // triplets give, term by term in their order.
+  double* values = A.valuePtr();
+  std::fill(values, values + pattern.nonzeros(), -0.0);
+  const int n_elem = static_cast<int>(m.triangles.size());
+  for (int e = 0; e < n_elem; ++e)
+    add_in_place<18>(values, pattern, map, element_dofs(m.triangles[e]), element_matrix(e));
+  for (const NodalBlock& b : nodal_blocks) add_in_place<6>(values, pattern, map, node_dofs(b.node), b.matrix);
   return A;
 }
 

@@ -19,6 +19,7 @@ struct DofMap {
   std::vector<int> start;  // 6 #N + 1, CSR offsets into index/coef
   std::vector<int> index;  // reduced DOF
   std::vector<double> coef;
+  std::vector<int> owner;  // #reduced: the node whose DOF each reduced DOF is (node by node, ascending)
   int reduced = 0;
 };
 
@@ -33,10 +34,18 @@ struct NodalBlock {
 };
 
 // A_hat = T^T A T (lower triangle) of an 18 x 18 world-frame matrix per
-// element plus nodal blocks.
+// element plus nodal blocks. Added in place into the node-block pattern
+// (node_block_pattern.hpp) when the map allows, else through triplets; both
+// give the same matrix to the last bit.
 SparseMatrix assemble_elements(const ShellModel& m, const DofMap& map,
                                const std::function<Matrix18d(int element)>& element_matrix,
                                const std::vector<NodalBlock>& nodal_blocks = {});
+
+// The same through a triplet list and Eigen's setFromTriplets: the reference
+// the in-place assembly is tested against, and its fallback.
+SparseMatrix assemble_elements_by_triplets(const ShellModel& m, const DofMap& map,
+                                           const std::function<Matrix18d(int element)>& element_matrix,
+                                           const std::vector<NodalBlock>& nodal_blocks = {});
 
 // The stiffness K_hat (lower triangle), N/m.
 SparseMatrix assemble_stiffness(const ShellModel& m, const DofMap& map, const ShellElementOptions& element);
