@@ -17,13 +17,19 @@ std::vector<Vector6d> expand_unit_mode(const DofMap& map, const Eigen::VectorXd&
 
 namespace {
 
-// The operator S x = W^-1 B W^-T x of the shift-invert transform.
+// The operator S x = W^-1 B W^-T x of the shift-invert transform, on
+// vectors it keeps (no allocation per product).
 std::function<void(const double*, double*)> transformed_operator(const StiffnessFactor& factor,
                                                                  const SparseMatrix& B_lower) {
   const int n = static_cast<int>(B_lower.rows());
-  return [&factor, &B_lower, n](const double* x, double* y) {
-    const Eigen::VectorXd v = factor.half_solve_transpose(Eigen::Map<const Eigen::VectorXd>(x, n));
-    Eigen::Map<Eigen::VectorXd>(y, n) = factor.half_solve(symmetric_product(B_lower, v));
+  return [&factor, &B_lower, n, v = Eigen::VectorXd(n), u = Eigen::VectorXd(n),
+          work = Eigen::VectorXd(n)](const double* x, double* y) mutable {
+    v = Eigen::Map<const Eigen::VectorXd>(x, n);
+    factor.half_solve_transpose(v, work);
+    u.setZero();
+    u.noalias() += B_lower.selfadjointView<Eigen::Lower>() * v;  // symmetric_product() without its vector
+    factor.half_solve(u, work);
+    Eigen::Map<Eigen::VectorXd>(y, n) = u;
   };
 }
 
@@ -35,7 +41,9 @@ double round_off_floor(const LanczosResult& eig) { return 1e-12 * eig.values.cwi
 // (psi is unit, so phi^T B phi = psi^T S psi = mu).
 void append_mode(const StiffnessFactor& factor, const Eigen::VectorXd& psi, double mu, PencilModes& out) {
   out.lambdas.push_back(1.0 / std::abs(mu));
-  out.modes.push_back(factor.half_solve_transpose(psi) / std::sqrt(std::abs(mu)));
+  Eigen::VectorXd phi = psi, work;
+  factor.half_solve_transpose(phi, work);
+  out.modes.push_back(phi / std::sqrt(std::abs(mu)));
 }
 
 }  // namespace

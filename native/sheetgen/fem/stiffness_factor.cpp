@@ -122,18 +122,19 @@ Eigen::MatrixXd StiffnessFactor::solve(const Eigen::MatrixXd& F) const {
   return impl_->ldlt.solve(F);
 }
 
-Eigen::VectorXd StiffnessFactor::half_solve(const Eigen::VectorXd& x) const {
+void StiffnessFactor::half_solve(Eigen::VectorXd& x, Eigen::VectorXd& work) const {
   const Impl& s = *impl_;
-  Eigen::VectorXd v = s.ldlt.permutationP() * x;
-  s.ldlt.matrixL().solveInPlace(v);
-  return v.cwiseProduct(s.inv_sqrt_d);
+  work.resize(x.size());
+  work.noalias() = s.ldlt.permutationP() * x;
+  s.ldlt.matrixL().solveInPlace(work);
+  x = work.cwiseProduct(s.inv_sqrt_d);
 }
 
-Eigen::VectorXd StiffnessFactor::half_solve_transpose(const Eigen::VectorXd& y) const {
+void StiffnessFactor::half_solve_transpose(Eigen::VectorXd& y, Eigen::VectorXd& work) const {
   const Impl& s = *impl_;
-  Eigen::VectorXd v = y.cwiseProduct(s.inv_sqrt_d);
-  s.ldlt.matrixU().solveInPlace(v);
-  return s.ldlt.permutationPinv() * v;
+  work = y.cwiseProduct(s.inv_sqrt_d);
+  s.ldlt.matrixU().solveInPlace(work);
+  y.noalias() = s.ldlt.permutationPinv() * work;
 }
 
 }  // namespace sheetgen

@@ -31,12 +31,15 @@ class StiffnessFactor {
   // K^-1 F for each column of F.
   Eigen::MatrixXd solve(const Eigen::MatrixXd& F) const;
 
-  // With K = W W^T (W = P^T L D^1/2 of the LDL^T backend): x -> W^-1 x and
-  // y -> W^-T y. The generalized eigenproblem K phi = lambda B phi becomes the
-  // standard one (W^-1 B W^-T) psi = (1 / lambda) psi, phi = W^-T psi.
+  // With K = W W^T (W = P^T L D^1/2 of the LDL^T backend), in place:
+  // x <- W^-1 x and y <- W^-T y, `work` a scratch vector of the same length
+  // (in place because the Lanczos operator applies them hundreds of times per
+  // analysis, and a fresh vector each time was 5 % of a bay solve in malloc).
+  // The generalized eigenproblem K phi = lambda B phi becomes the standard
+  // one (W^-1 B W^-T) psi = (1 / lambda) psi, phi = W^-T psi.
   // Requires the LDL^T backend (eigen analyses always factor with it).
-  Eigen::VectorXd half_solve(const Eigen::VectorXd& x) const;
-  Eigen::VectorXd half_solve_transpose(const Eigen::VectorXd& y) const;
+  void half_solve(Eigen::VectorXd& x, Eigen::VectorXd& work) const;
+  void half_solve_transpose(Eigen::VectorXd& y, Eigen::VectorXd& work) const;
 
   int symbolic_analyses() const;
   ShellSolverBackend backend() const;
