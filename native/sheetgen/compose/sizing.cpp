@@ -59,24 +59,37 @@ struct Trials {
   tbb::task_arena& arena;
   int evaluated = 0;
 
-  // The three placements of one cut (centred, at the start, at the end),
-  // evaluated side by side; the first valid one in that order that is cheaper
-  // than `current`, if any. The same answer for any number of threads.
+  // The three placements of one cut (centred, at the start, at the end); the
+  // first valid one in that order that is cheaper than `current`, if any. They
+  // are analysed in waves of as many as the arena has threads, and a wave
+  // that gives the answer ends the search: the third placement of a cut whose
+  // first or second passes is never analysed on two threads (before, it ran
+  // alone on one thread while the other waited). The same answer for any
+  // number of threads. `evaluated` counts every placement that can be cut,
+  // analysed or not, so the trial budget (max_trials) ends the cuts where it
+  // did when all three were analysed.
   std::optional<Candidate> first_cheaper(const Candidate& current, int tab, double cut) {
     const double min_w = problem.manufacturing.min_tab_width;
     const std::array<std::array<double, 2>, 3> cuts{{{cut / 2, cut / 2}, {cut, 0.0}, {0.0, cut}}};
-    std::array<std::optional<Candidate>, 3> out;
-    arena.execute([&] {
-      tbb::parallel_for(0, 3, [&](int k) {
-        Candidate trial = current;
-        if (!narrow_tab(trial.part, tab, cuts[k][0], cuts[k][1], min_w)) return;
-        const double h = options.trial_element_factor * part_default_element_size(trial.part, problem.material.thickness);
-        out[k] = evaluate_part(problem, env, load_index, std::move(trial), h, nullptr, current.cost);
+    std::array<std::optional<Candidate>, 3> trial;
+    for (int k = 0; k < 3; ++k) {
+      Candidate t = current;
+      if (narrow_tab(t.part, tab, cuts[k][0], cuts[k][1], min_w)) trial[k] = std::move(t);
+      evaluated += trial[k].has_value();
+    }
+    const int wave = std::max(1, arena.max_concurrency());
+    for (int first = 0; first < 3; first += wave) {
+      const int last = std::min(3, first + wave);
+      arena.execute([&] {
+        tbb::parallel_for(first, last, [&](int k) {
+          if (!trial[k]) return;
+          const double h = options.trial_element_factor * part_default_element_size(trial[k]->part, problem.material.thickness);
+          trial[k] = evaluate_part(problem, env, load_index, std::move(*trial[k]), h, nullptr, current.cost);
+        });
       });
-    });
-    for (const auto& c : out) evaluated += c.has_value();
-    for (auto& c : out)
-      if (c && c->valid() && c->cost < current.cost) return std::move(c);
+      for (int k = first; k < last; ++k)
+        if (trial[k] && trial[k]->valid() && trial[k]->cost < current.cost) return std::move(trial[k]);
+    }
     return std::nullopt;
   }
 };
