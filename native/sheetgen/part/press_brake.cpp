@@ -76,28 +76,37 @@ struct Prism {  // a convex profile (CCW in X, Y) extruded over [z0, z1]
   std::vector<BoundingBox> face_boxes;  // of each face
 };
 
-Prism make_prism(const std::vector<Vec2>& profile, double z0, double z1) {
-  Prism p{profile, z0, z1, {}, {}, {}, {}};
+// `p` becomes `profile` extruded over [z0, z1], in the storage it has: a
+// bend check refills its tools for every punch, die and side it tries, and
+// fresh faces each time were most of the check's allocations.
+void fill_prism(Prism& p, const std::vector<Vec2>& profile, double z0, double z1) {
   const size_t n = profile.size();
-  std::vector<Vec3> bottom, top;
+  p.profile = profile;
+  p.z0 = z0;
+  p.z1 = z1;
+  p.faces.resize(n + 2);
+  p.normals.resize(n + 2);
+  std::vector<Vec3>& bottom = p.faces[n];
+  std::vector<Vec3>& top = p.faces[n + 1];
+  bottom.resize(n);
+  top.resize(n);
   for (size_t i = 0; i < n; ++i) {
     const Vec2 a = profile[i], b = profile[(i + 1) % n];
-    p.faces.push_back({Vec3(a.x(), a.y(), z0), Vec3(b.x(), b.y(), z0), Vec3(b.x(), b.y(), z1), Vec3(a.x(), a.y(), z1)});
-    p.normals.push_back(Vec3(b.y() - a.y(), a.x() - b.x(), 0).normalized());
-    bottom.push_back(Vec3(profile[n - 1 - i].x(), profile[n - 1 - i].y(), z0));
-    top.push_back(Vec3(a.x(), a.y(), z1));
+    p.faces[i].assign({Vec3(a.x(), a.y(), z0), Vec3(b.x(), b.y(), z0), Vec3(b.x(), b.y(), z1), Vec3(a.x(), a.y(), z1)});
+    p.normals[i] = Vec3(b.y() - a.y(), a.x() - b.x(), 0).normalized();
+    bottom[i] = Vec3(profile[n - 1 - i].x(), profile[n - 1 - i].y(), z0);
+    top[i] = Vec3(a.x(), a.y(), z1);
   }
-  p.faces.push_back(bottom);
-  p.normals.push_back(-Vec3::UnitZ());
-  p.faces.push_back(top);
-  p.normals.push_back(Vec3::UnitZ());
-  for (const auto& face : p.faces) {
+  p.normals[n] = -Vec3::UnitZ();
+  p.normals[n + 1] = Vec3::UnitZ();
+  p.face_boxes.resize(n + 2);
+  p.box = BoundingBox();
+  for (size_t f = 0; f < n + 2; ++f) {
     BoundingBox b;
-    for (const Vec3& v : face) b.extend(v);
-    p.face_boxes.push_back(b);
+    for (const Vec3& v : p.faces[f]) b.extend(v);
+    p.face_boxes[f] = b;
     p.box.extend(b);
   }
-  return p;
 }
 
 std::vector<Vec2> mirrored(const std::vector<Vec2>& profile) {
@@ -266,8 +275,12 @@ class BendCheck {
     ro_.angles[k_] = part_.tabs[k_].params.theta3 * s / steps;
     realise_into(part_, pose_rp_, ro_);
     const ToolFrame f = tool_frame(pose_rp_, part_, k_, ro_.angles[k_]);
+    p.corners.reserve(pose_rp_.tabs.size());
+    p.normals.reserve(pose_rp_.tabs.size());
+    p.boxes.reserve(pose_rp_.tabs.size());
     for (const RealisedTab& tab : pose_rp_.tabs) {
       std::vector<Vec3> c;
+      c.reserve(tab.corners.size());
       BoundingBox b;
       for (const Vec3& v : tab.corners) b.extend(c.emplace_back(f.point(v)));
       p.corners.push_back(std::move(c));
@@ -339,23 +352,25 @@ class BendCheck {
     // bend line, so that flanges standing at its ends, a box's sides, clear
     // them: the punch stops the clearance short of each end.
     const double inset = std::min(t_ / 2 + tools_.gap + 1e-6, 0.25 * L);
-    punch_.clear();
-    for (const auto& piece : punch.pieces) {
-      std::vector<Vec2> shifted;
-      for (const Vec2& v : piece) shifted.push_back(v + Vec2(0, top));
-      punch_.push_back(make_prism(flipped ? mirrored(shifted) : shifted, inset, L - inset));
+    punch_.resize(punch.pieces.size());
+    for (size_t i = 0; i < punch.pieces.size(); ++i) {
+      shifted_.clear();
+      for (const Vec2& v : punch.pieces[i]) shifted_.push_back(v + Vec2(0, top));
+      fill_prism(punch_[i], flipped ? mirrored(shifted_) : shifted_, inset, L - inset);
     }
     // The die's top a hair below the clearance: the flat sheet lies on it by design.
     const double v = die.v_opening / 2, depth = v / std::tan(die.angle / 2), w = die.width / 2, h = die.height;
     const double seat = bottom - tools_.gap - 1e-6;
     const std::vector<Vec2> left = {Vec2(-w, bottom - h), Vec2(0, bottom - h), Vec2(0, seat - depth),
                                     Vec2(-v, seat), Vec2(-w, seat)};
-    die_ = {make_prism(left, 0, L), make_prism(mirrored(left), 0, L)};
+    die_.resize(2);
+    fill_prism(die_[0], left, 0, L);
+    fill_prism(die_[1], mirrored(left), 0, L);
     const double rw = tools_.machine.ram_width / 2, bw = tools_.machine.bed_width / 2;
-    ram_ = make_prism(quad(Vec2(-rw, top + punch.height), Vec2(rw, top + punch.height), Vec2(rw, top + punch.height + 1),
-                           Vec2(-rw, top + punch.height + 1)), -kFar, kFar);
-    bed_ = make_prism(quad(Vec2(-bw, bottom - h - 1), Vec2(bw, bottom - h - 1), Vec2(bw, bottom - h),
-                           Vec2(-bw, bottom - h)), -kFar, kFar);
+    fill_prism(ram_, quad(Vec2(-rw, top + punch.height), Vec2(rw, top + punch.height), Vec2(rw, top + punch.height + 1),
+                          Vec2(-rw, top + punch.height + 1)), -kFar, kFar);
+    fill_prism(bed_, quad(Vec2(-bw, bottom - h - 1), Vec2(bw, bottom - h - 1), Vec2(bw, bottom - h),
+                          Vec2(-bw, bottom - h)), -kFar, kFar);
   }
 
   // The first tab too close to a tool or the machine in the current state.
@@ -388,8 +403,9 @@ class BendCheck {
   bool flat_ = false;
   RealisedPart pose_rp_;  // scratch for pose()
   std::vector<Pose> poses_;
-  std::vector<Prism> punch_, die_;
+  std::vector<Prism> punch_, die_;  // refilled in place by every build_tools()
   Prism ram_, bed_;
+  std::vector<Vec2> shifted_;        // scratch of build_tools()
 };
 
 }  // namespace

@@ -6,7 +6,7 @@
 
 namespace sheetgen {
 
-std::vector<Vec2> tab_local_corners(const TabParameters& p, bool* degenerate) {
+void tab_local_corners_into(const TabParameters& p, std::vector<Vec2>& c, bool* degenerate) {
   // Centre line from the root midpoint, skewed by theta2; the far edge passes
   // through M1 (perpendicular distance l from the root) with direction
   // (cos theta1, sin theta1) and ends on the two side lines, which are parallel
@@ -17,9 +17,18 @@ std::vector<Vec2> tab_local_corners(const TabParameters& p, bool* degenerate) {
   const Vec2 f(std::cos(p.theta1), std::sin(p.theta1));
   bool bad = !(c12 > 1e-9) || !(p.w > 0) || !(p.l > 0) || !(std::abs(std::cos(p.theta2)) > 1e-9);
   const double h = bad ? 0.5 * p.w : p.w * std::cos(p.theta2) / (2.0 * c12);
-  std::vector<Vec2> c = {Vec2(p.w, 0), Vec2(0, 0), m1 - h * f, m1 + h * f};
+  c.resize(4);
+  c[0] = Vec2(p.w, 0);
+  c[1] = Vec2(0, 0);
+  c[2] = m1 - h * f;
+  c[3] = m1 + h * f;
   if (!(c[2].y() > 0) || !(c[3].y() > 0)) bad = true;
   if (degenerate) *degenerate = bad;
+}
+
+std::vector<Vec2> tab_local_corners(const TabParameters& p, bool* degenerate) {
+  std::vector<Vec2> c;
+  tab_local_corners_into(p, c, degenerate);
   return c;
 }
 
@@ -98,7 +107,7 @@ void realise_into(const Part& part, RealisedPart& out, const RealiseOptions& opt
     t.normal = c * np - s * o;
     t.bend_angle = th;
     t.direction = tab.params.theta3 >= 0 ? BendDirection::Up : BendDirection::Down;
-    t.local = tab_local_corners(tab.params, &t.degenerate);
+    tab_local_corners_into(tab.params, t.local, &t.degenerate);  // in place: realise_into runs in every bend sweep
     t.corners.resize(4);
     for (int k = 0; k < 4; ++k) t.corners[k] = t.origin + t.local[k].x() * e + t.local[k].y() * v;
     set_box(t);
