@@ -33,8 +33,8 @@ class StiffnessFactor {
 
   // With K = W W^T (W = P^T L D^1/2 of the LDL^T backend), in place:
   // x <- W^-1 x and y <- W^-T y, `work` a scratch vector of the same length
-  // (in place because the Lanczos operator applies them hundreds of times per
-  // analysis, and a fresh vector each time was 5 % of a bay solve in malloc).
+  // (in place because the Lanczos operator applies them about fifty times per
+  // eigen solve, and need not allocate a vector each time).
   // The generalized eigenproblem K phi = lambda B phi becomes the standard
   // one (W^-1 B W^-T) psi = (1 / lambda) psi, phi = W^-T psi.
   // Requires the LDL^T backend (eigen analyses always factor with it).
