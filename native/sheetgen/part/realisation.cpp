@@ -26,12 +26,6 @@ void tab_local_corners_into(const TabParameters& p, std::vector<Vec2>& c, bool* 
   if (degenerate) *degenerate = bad;
 }
 
-std::vector<Vec2> tab_local_corners(const TabParameters& p, bool* degenerate) {
-  std::vector<Vec2> c;
-  tab_local_corners_into(p, c, degenerate);
-  return c;
-}
-
 std::vector<FreeEdge> RealisedPart::free_edges() const {
   std::vector<FreeEdge> out;
   for (int i = 0; i < static_cast<int>(tabs.size()); ++i) {

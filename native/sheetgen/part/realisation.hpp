@@ -46,11 +46,10 @@ struct RealisedPart {
   std::vector<FreeEdge> free_edges() const;  // base: all edges; tabs: edges 1, 2, 3
 };
 
-// Tab geometry in its local frame: [P1, P0, F0, F1] from (w, l, theta1, theta2).
-// `degenerate` is set when the far edge cannot be built.
-std::vector<Vec2> tab_local_corners(const TabParameters& p, bool* degenerate = nullptr);
-// The same into `out` (resized to 4), which keeps its storage: no allocation
-// when realise_into() refills a RealisedPart.
+// Tab geometry in its local frame: [P1, P0, F0, F1] from (w, l, theta1, theta2),
+// into `out` (resized to 4), which keeps its storage: no allocation when
+// realise_into() refills a RealisedPart. `degenerate` is set when the far
+// edge cannot be built.
 void tab_local_corners_into(const TabParameters& p, std::vector<Vec2>& out, bool* degenerate = nullptr);
 
 // Options for partial folds (bend-sequence sweeps) and flat layouts.
