@@ -77,16 +77,10 @@ bool NodeBlockPattern::collect_neighbours(const ShellModel& m, const DofMap& map
     }
     return true;
   };
-  for (const auto& t : m.triangles) {
-    int dofs[18];
-    for (int a = 0; a < 18; ++a) dofs[a] = 6 * t[a / 6] + a % 6;
-    if (!add_block(dofs, 18)) return false;
-  }
-  for (int node : block_nodes) {
-    int dofs[6];
-    for (int a = 0; a < 6; ++a) dofs[a] = 6 * node + a;
-    if (!add_block(dofs, 6)) return false;
-  }
+  for (const auto& t : m.triangles)
+    if (!add_block(element_dofs(t).data(), 18)) return false;
+  for (int node : block_nodes)
+    if (!add_block(node_dofs(node).data(), 6)) return false;
   std::sort(pairs_.begin(), pairs_.end());
   pairs_.erase(std::unique(pairs_.begin(), pairs_.end()), pairs_.end());
   return true;

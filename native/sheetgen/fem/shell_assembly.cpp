@@ -98,18 +98,6 @@ void add_in_place(double* values, NodeBlockPattern& pattern, const DofMap& map, 
   for_each_lower_term<N>(map, dofs, A, [&](int ia, int ib, double v) { values[pattern.position(ia, ib)] += v; });
 }
 
-// The full DOF ids of a triangle's three nodes and of one node.
-std::array<int, 18> element_dofs(const std::array<int, 3>& t) {
-  std::array<int, 18> dofs;
-  for (int a = 0; a < 18; ++a) dofs[a] = 6 * t[a / 6] + a % 6;
-  return dofs;
-}
-std::array<int, 6> node_dofs(int node) {
-  std::array<int, 6> dofs;
-  for (int a = 0; a < 6; ++a) dofs[a] = 6 * node + a;
-  return dofs;
-}
-
 std::uint64_t fnv1a(const void* data, size_t bytes, std::uint64_t h) {
   const auto* p = static_cast<const unsigned char*>(data);
   for (size_t i = 0; i < bytes; ++i) {

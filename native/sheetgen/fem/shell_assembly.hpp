@@ -33,6 +33,18 @@ struct NodalBlock {
   Matrix6d matrix = Matrix6d::Zero();
 };
 
+// The full DOF ids (6 per node) of a triangle's three nodes and of one node.
+inline std::array<int, 18> element_dofs(const std::array<int, 3>& t) {
+  std::array<int, 18> dofs;
+  for (int a = 0; a < 18; ++a) dofs[a] = 6 * t[a / 6] + a % 6;
+  return dofs;
+}
+inline std::array<int, 6> node_dofs(int node) {
+  std::array<int, 6> dofs;
+  for (int a = 0; a < 6; ++a) dofs[a] = 6 * node + a;
+  return dofs;
+}
+
 // A_hat = T^T A T (lower triangle) of an 18 x 18 world-frame matrix per
 // element plus nodal blocks. Added in place into the node-block pattern
 // (node_block_pattern.hpp) when the map allows, else through triplets; both
