@@ -11,6 +11,7 @@
 #include "sheetgen/env/environment.hpp"
 #include "sheetgen/part/bend_sequence.hpp"
 #include "sheetgen/part/flat_pattern.hpp"
+#include "sheetgen/part/press_brake.hpp"
 #include "sheetgen/part/validity.hpp"
 #include "../tests/native/common/scene_fixture.hpp"
 
@@ -126,17 +127,36 @@ void BM_UnfoldAndOverlap(benchmark::State& state) {
 }
 BENCHMARK(BM_UnfoldAndOverlap);
 
+// Argument: 1 skips the states provably clear (the default), 0 checks every state.
 void BM_BendSequencePlan(benchmark::State& state) {
   Fixture& f = fixture();
+  BendSequenceOptions o;
+  o.skip_clear_states = state.range(0) != 0;
   int sweeps = 0;
   for (auto _ : state) {
-    const BendSequenceResult r = plan_bend_sequence(f.part, f.spec);
+    const BendSequenceResult r = plan_bend_sequence(f.part, f.spec, o);
     if (!r.ok()) state.SkipWithError(r.message.c_str());
     sweeps = r.sweeps;
   }
   state.counters["sweeps"] = sweeps;
 }
-BENCHMARK(BM_BendSequencePlan)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_BendSequencePlan)->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond);
+
+// The press brake along the part-only order, every bend with the standard
+// tools. Argument as above.
+void BM_PressBrakeCheck(benchmark::State& state) {
+  Fixture& f = fixture();
+  const BendSequenceResult order = plan_bend_sequence(f.part, f.spec);
+  ToolSet tools = standard_tool_set(f.spec.thickness);
+  tools.skip_clear_states = state.range(0) != 0;
+  int made = 0;
+  for (auto _ : state) {
+    const PressBrakeResult r = check_press_brake(f.part, order.order, f.spec, tools);
+    made = static_cast<int>(r.tooling.size());
+  }
+  state.counters["bends_made"] = made;
+}
+BENCHMARK(BM_PressBrakeCheck)->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond);
 
 }  // namespace
 

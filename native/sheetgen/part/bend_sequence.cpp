@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstdio>
 #include <functional>
+#include <limits>
 #include <stdexcept>
 #include <string>
 #include <unordered_set>
@@ -39,45 +40,123 @@ class Simulator {
   }
 
   // Sweeps bend k from 0 to its angle with the current other angles.
+  //
+  // Conservative advancement: only the subtree of k moves, turning about k's
+  // bend line by `step` per state, so a point at distance r from that line
+  // moves at most r * step. A pair found d >= need apart stays clear for the
+  // next (d - need) / (r * step) states, which are not looked at (nor, when
+  // every pair is clear, realised). Only states provably clear are skipped,
+  // so the first collision found is the one checking every state finds.
   bool sweep(int k, BendCollision& hit) {
     const double target = part_.tabs[k].params.theta3;
     const int steps = std::max(1, static_cast<int>(std::ceil(std::abs(target) / o_.max_step)));
+    const double step = std::abs(target) / steps;
+    clear_until_.assign(static_cast<size_t>(n_) * n_, 0);
+    radius_.clear();
     for (int s = 1; s <= steps; ++s) {
-      ro_.angles[k] = target * s / steps;
-      realise_into(part_, rp_, ro_);
+      bool realised = false;
       for (int a = 0; a < n_; ++a) {
         if (!subtree_[k][a]) continue;
         for (int b = 0; b < n_; ++b) {
           if (subtree_[k][b]) continue;
-          if (!pair_clear(a, b, hit)) {
+          int& until = clear_until_[a * n_ + b];
+          if (until >= s) continue;
+          if (!realised) {
+            set_state(k, target * s / steps, s == 1);
+            realised = true;
+            if (radius_.empty()) set_radii(k);
+          }
+          double apart = 0;
+          if (!pair_clear(a, b, hit, &apart)) {
             hit.bend_tab = k;
             hit.fraction = static_cast<double>(s) / steps;
             hit.angle = ro_.angles[k];
             ro_.angles[k] = 0;
             return false;
           }
+          if (o_.skip_clear_states) until = s + clear_states(apart - need_, radius_[a] * step, steps);
         }
       }
     }
+    ro_.angles[k] = target * steps / steps;  // where the last state left it, skipped or not
     return true;
   }
 
   void set_angle(int k, double a) { ro_.angles[k] = a; }
 
  private:
-  bool pair_clear(int a, int b, BendCollision& hit) const {
+  // Whether tabs a and b are clear of each other in rp_; when they are,
+  // `apart` (m) is a lower bound on their distance (infinite for pairs that
+  // may touch by design).
+  bool pair_clear(int a, int b, BendCollision& hit, double* apart = nullptr) const {
+    double unused = 0;
+    double& d = apart ? *apart : unused;
+    d = std::numeric_limits<double>::infinity();
     if (part_.tabs[a].parent == b || part_.tabs[b].parent == a) return true;
     // A self-rivet pair closes onto itself at the end of its bends by design.
     if (part_.tabs[a].riveted_to == b || part_.tabs[b].riveted_to == a) return true;
     const RealisedTab& ta = rp_.tabs[a];
     const RealisedTab& tb = rp_.tabs[b];
-    if (box_gap(ta.box, tb.box) >= need_) return true;
-    const double d = convex_polygon_distance(ta.corners, ta.normal, tb.corners, tb.normal, need_);
+    d = box_gap(ta.box, tb.box);
+    if (d >= need_) return true;
+    d = convex_polygon_distance(ta.corners, ta.normal, tb.corners, tb.normal, need_);
     if (d >= need_) return true;
     hit.tab_a = a;
     hit.tab_b = b;
     hit.distance = d;
     return false;
+  }
+
+  // rp_ with bend k at `angle`. Checking every state realises each anew;
+  // otherwise only k's subtree moves, turned about k's bend line from the
+  // state the sweep started in (`first`: the sweep's first state): the
+  // corners realise_into gives, to rounding, at a fraction of the cost.
+  void set_state(int k, double angle, bool first) {
+    ro_.angles[k] = angle;
+    if (!o_.skip_clear_states) {
+      realise_into(part_, rp_, ro_);
+      return;
+    }
+    if (first) {
+      ro_.angles[k] = 0;
+      realise_into(part_, start_, ro_);
+      ro_.angles[k] = angle;
+      rp_ = start_;
+    }
+    // The child turns by -angle about its bend line (realise_into: its
+    // direction away from the line is cos * o + sin * n, o = e x n).
+    const Vec3 o = start_.tabs[k].origin, e = start_.tabs[k].x_axis;
+    const double c = std::cos(-angle), sn = std::sin(-angle);
+    auto turn = [&](const Vec3& v) { return Vec3(c * v + sn * e.cross(v) + (1 - c) * e.dot(v) * e); };
+    for (int a = 0; a < n_; ++a) {
+      if (!subtree_[k][a]) continue;
+      const RealisedTab& from = start_.tabs[a];
+      RealisedTab& to = rp_.tabs[a];
+      to.box = BoundingBox();
+      for (size_t j = 0; j < from.corners.size(); ++j) to.box.extend(to.corners[j] = o + turn(from.corners[j] - o));
+      to.normal = turn(from.normal);
+    }
+  }
+
+  // radius_[a]: how far the farthest corner of each tab of k's subtree is from
+  // k's bend line (turning about the line keeps it).
+  void set_radii(int k) {
+    const Vec3 o = rp_.tabs[k].origin, e = rp_.tabs[k].x_axis;
+    radius_.assign(n_, 0.0);
+    for (int a = 0; a < n_; ++a) {
+      if (!subtree_[k][a]) continue;
+      for (const Vec3& v : rp_.tabs[a].corners) {
+        const Vec3 r = v - o;
+        radius_[a] = std::max(radius_[a], (r - r.dot(e) * e).norm());
+      }
+    }
+  }
+
+  // States after this one a tab moving at most `per_state` (m) per state
+  // stays clear with `margin` (m) to spare; a part per million is kept back for rounding.
+  static int clear_states(double margin, double per_state, int steps) {
+    const double states = margin / (per_state * (1 + 1e-6));
+    return states >= steps ? steps : static_cast<int>(std::floor(states));
   }
 
   const Part& part_;
@@ -87,6 +166,9 @@ class Simulator {
   RealiseOptions ro_;
   RealisedPart rp_;
   std::vector<std::vector<char>> subtree_;
+  std::vector<int> clear_until_;  // per pair (a * n + b): the last state of the sweep known clear
+  std::vector<double> radius_;    // m, per tab of the swept subtree (set_radii)
+  RealisedPart start_;            // the part as the sweep found it (set_state)
 };
 
 std::string describe(const BendCollision& c) {

@@ -16,6 +16,10 @@ struct BendSequenceOptions {
   double max_step = M_PI / 180.0;  // rad, largest angle increment between sampled states of a sweep
   double gap = 0.2e-3;             // m, kept beyond t between non-adjacent tabs (as ValidityOptions::self_gap)
   int max_sweeps = 5000;           // search budget: bend sweeps simulated by plan_bend_sequence
+  // Skip the states of a sweep in which a pair of tabs is provably clear
+  // (docs/manufacturing.md "Bend sequence"): the same answers as checking
+  // every state, which `false` does (the reference the tests compare with).
+  bool skip_clear_states = true;
   // plan_bend_sequence only: when set, a bend is taken next only if one of
   // these press-brake tools makes it in that state (part/press_brake.hpp).
   const ToolSet* tools = nullptr;

@@ -1,9 +1,11 @@
 #include "sheetgen/part/press_brake.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdio>
 #include <limits>
+#include <optional>
 #include <stdexcept>
 
 #include "sheetgen/core/polygon_geometry.hpp"
@@ -71,7 +73,8 @@ struct Prism {  // a convex profile (CCW in X, Y) extruded over [z0, z1]
   std::vector<Vec2> profile;
   double z0 = 0, z1 = 0;
   std::vector<std::vector<Vec3>> faces;
-  std::vector<Vec3> normals;
+  std::vector<Vec3> normals;            // outward, unit
+  std::vector<double> offsets;          // of each face's plane: dot(normals[f], x) = offsets[f] on it
   BoundingBox box;                      // of the prism
   std::vector<BoundingBox> face_boxes;  // of each face
 };
@@ -99,6 +102,8 @@ void fill_prism(Prism& p, const std::vector<Vec2>& profile, double z0, double z1
   }
   p.normals[n] = -Vec3::UnitZ();
   p.normals[n + 1] = Vec3::UnitZ();
+  p.offsets.resize(n + 2);
+  for (size_t f = 0; f < n + 2; ++f) p.offsets[f] = p.normals[f].dot(p.faces[f][0]);
   p.face_boxes.resize(n + 2);
   p.box = BoundingBox();
   for (size_t f = 0; f < n + 2; ++f) {
@@ -115,15 +120,32 @@ std::vector<Vec2> mirrored(const std::vector<Vec2>& profile) {
   return m;
 }
 
+// A lower bound on the distance from a polygon to a prism, m: how far the
+// whole polygon lies outside the plane of one of the prism's faces (a
+// separating plane; 0 or less when there is none among them). The polygon
+// near a tool's bounding box is mostly beside a slanted face of it (the
+// punch's tip, the die's V), where the box says nothing and this settles it.
+double separating_face_gap(const std::vector<Vec3>& polygon, const Prism& prism) {
+  double best = -std::numeric_limits<double>::infinity();
+  for (size_t f = 0; f < prism.normals.size(); ++f) {
+    double outside = std::numeric_limits<double>::infinity();
+    for (const Vec3& v : polygon) outside = std::min(outside, prism.normals[f].dot(v) - prism.offsets[f]);
+    best = std::max(best, outside);
+  }
+  return best;
+}
+
 // Distance from a convex planar polygon to a prism, m (0 when inside or
 // crossing): exact below `stop_below`; at or above it, possibly only a lower
-// bound (the gap between bounding boxes), which answers "closer than
+// bound (the gap between bounding boxes, or a separating face plane), which answers "closer than
 // stop_below?" the same way at a fraction of the cost: most tabs are far
 // from most tools. `pb` is the polygon's bounding box.
 double polygon_prism_distance(const std::vector<Vec3>& polygon, const BoundingBox& pb, const Vec3& normal,
                               const Prism& prism, double stop_below) {
   const double gap = box_gap(pb, prism.box);
   if (gap >= stop_below) return gap;
+  const double apart = separating_face_gap(polygon, prism);
+  if (apart >= stop_below) return apart;
   for (const Vec3& v : polygon)
     if (v.z() >= prism.z0 && v.z() <= prism.z1 && point_in_convex(Vec2(v.x(), v.y()), prism.profile)) return 0;
   double d = std::numeric_limits<double>::infinity();
@@ -169,19 +191,25 @@ double flange_depth_at(const std::vector<Vec3>& corners, const Vec3& o, const Ve
   return reach;
 }
 
+// A flange's reach from the bend line at 40 points along it, m.
+constexpr int kFlangePoints = 40;
+using FlangeDepths = std::array<double, kFlangePoints>;
+FlangeDepths flange_depths(const std::vector<Vec3>& corners, const Vec3& o, const Vec3& z, const Vec3& u, double L) {
+  FlangeDepths at;
+  for (int i = 0; i < kFlangePoints; ++i) at[i] = flange_depth_at(corners, o, z, u, (i + 0.5) / kFlangePoints * L);
+  return at;
+}
+
 // A flange over the die: the share of the bend line along which it reaches
-// `need`, and its deepest reach (m), from 40 points along the line.
+// `need`, and its deepest reach (m).
 struct FlangeReach {
   double share = 0, deepest = 0;
 };
-FlangeReach flange_reach(const std::vector<Vec3>& corners, const Vec3& o, const Vec3& z, const Vec3& u, double L,
-                         double need) {
-  constexpr int kPoints = 40;
+FlangeReach flange_reach(const FlangeDepths& depths, double need) {
   FlangeReach r;
-  for (int i = 0; i < kPoints; ++i) {
-    const double d = flange_depth_at(corners, o, z, u, (i + 0.5) / kPoints * L);
+  for (double d : depths) {
     r.deepest = std::max(r.deepest, d);
-    if (d >= need) r.share += 1.0 / kPoints;
+    if (d >= need) r.share += 1.0 / kFlangePoints;
   }
   return r;
 }
@@ -228,18 +256,24 @@ class BendCheck {
   BendCheck(const Part& part, const SheetSpec& spec, const ToolSet& tools, std::vector<double> angles, int k)
       : part_(part), t_(spec.thickness), tools_(tools), k_(k), parent_(part.tabs[k].parent) {
     ro_.angles = std::move(angles);
+    moves_.assign(part.size(), 0);
+    moves_[k] = 1;
+    for (int i = k + 1; i < part.size(); ++i) moves_[i] = moves_[part.tabs[i].parent];  // parents come first
   }
 
-  Attempt run(const PunchTool& punch, const DieTool& die, bool flipped) {
+  Attempt run(int p, int d, bool flipped) {
+    const PunchTool& punch = tools_.punches[p];
+    const DieTool& die = tools_.dies[d];
     if (std::string r = angle_rule(punch, die); !r.empty()) return {r, 0};
     flat_state();
     if (std::string r = flange_rule(die); !r.empty()) return {r, 1, die.min_flange_ratio * die.v_opening};
     if (std::string r = fits_open_press(punch, die); !r.empty()) return {r, 2};
-    build_tools(punch, die, flipped);
+    build_tools(p, d, flipped);
     const double target = part_.tabs[k_].params.theta3;
     const int steps = std::max(1, static_cast<int>(std::ceil(std::abs(target) / tools_.max_step)));
+    clear_until_.assign(part_.size() * prism_count(), -1);
     for (int s = 0; s <= steps; ++s) {
-      if (std::string r = collision(pose(s, steps), punch, die); !r.empty()) {
+      if (std::string r = collision(s, steps, punch, die); !r.empty()) {
         char at[64];
         std::snprintf(at, sizeof at, " at %.0f deg of its %.0f deg", std::abs(target * s / steps) / kDeg,
                       std::abs(target) / kDeg);
@@ -259,19 +293,80 @@ class BendCheck {
     std::vector<BoundingBox> boxes;
   };
 
+  // A punch with the ram above it; a die with the bed below it (build_tools).
+  struct PunchSide {
+    std::vector<Prism> pieces;
+    Prism ram;
+  };
+  struct DieSide {
+    std::vector<Prism> halves;
+    Prism bed;
+  };
+
   // rp_ with the bend still flat (the flange and open-press rules, the tools' placement).
   void flat_state() {
     if (flat_) return;
     ro_.angles[k_] = 0;
     realise_into(part_, rp_, ro_);
     flat_ = true;
+    // The flanges' reach does not depend on the die: measured once for all.
+    const RealisedTab& tab = rp_.tabs[k_];
+    const double L = (tab.bend_end() - tab.origin).norm();
+    const Vec3 z = tab.x_axis, n_par = rp_.tabs[parent_].normal;
+    child_depths_ = flange_depths(tab.corners, tab.origin, z, z.cross(n_par), L);
+    parent_depths_ = flange_depths(rp_.tabs[parent_].corners, tab.origin, z, n_par.cross(z), L);
   }
 
-  // State s of `steps` along the stroke (bend angle theta3 * s / steps).
+  // State s of `steps` along the stroke (bend angle theta3 * s / steps), realised.
   const Pose& pose(int s, int steps) {
     if (poses_.empty()) poses_.resize(steps + 1);
     Pose& p = poses_[s];
     if (!p.corners.empty()) return p;
+    realised_pose(s, steps, p);
+    // Turning about Z keeps each corner's distance from it: any state gives the radii.
+    if (radius_.empty())
+      for (const std::vector<Vec3>& c : p.corners) {
+        double r = 0;
+        for (const Vec3& v : c) r = std::max(r, std::hypot(v.x(), v.y()));
+        radius_.push_back(r);
+      }
+    return p;
+  }
+
+  // Tab i in state s, in the tool frame: turned from the flat state when
+  // skipping clear states, else from the state realised anew.
+  struct TabView {
+    const std::vector<Vec3>* corners;
+    Vec3 normal;
+    BoundingBox box;
+  };
+  TabView tab_in_state(int i, int s, int steps) {
+    if (s == 0 || !tools_.skip_clear_states) {
+      const Pose& p = pose(s, steps);
+      return {&p.corners[i], p.normals[i], p.boxes[i]};
+    }
+    const Pose& flat = pose(0, steps);
+    if (turned_state_ != s) {
+      const double h = std::abs(part_.tabs[k_].params.theta3 * s / steps) / 2;
+      cos_ = std::cos(h);
+      sin_ = std::sin(h);
+      turned_state_ = s;
+    }
+    // The tool frame halves the bend, so in it the bent tab's subtree turns
+    // about Z by +a/2 and the rest of the part by -a/2 (a the bend angle;
+    // docs/manufacturing.md derives the signs): the corners realised_pose
+    // gives, to rounding, without realising the part.
+    const double c = cos_, sn = moves_[i] ? sin_ : -sin_;
+    auto turn = [&](const Vec3& v) { return Vec3(c * v.x() - sn * v.y(), sn * v.x() + c * v.y(), v.z()); };
+    const std::vector<Vec3>& from = flat.corners[i];
+    turned_.resize(from.size());
+    TabView v{&turned_, turn(flat.normals[i]), BoundingBox()};
+    for (size_t j = 0; j < from.size(); ++j) v.box.extend(turned_[j] = turn(from[j]));
+    return v;
+  }
+
+  // State s realised anew and taken into its tool frame.
+  void realised_pose(int s, int steps, Pose& p) {
     ro_.angles[k_] = part_.tabs[k_].params.theta3 * s / steps;
     realise_into(part_, pose_rp_, ro_);
     const ToolFrame f = tool_frame(pose_rp_, part_, k_, ro_.angles[k_]);
@@ -287,7 +382,6 @@ class BendCheck {
       p.normals.push_back(f.vector(tab.normal));
       p.boxes.push_back(b);
     }
-    return p;
   }
 
   std::string angle_rule(const PunchTool& punch, const DieTool& die) const {
@@ -308,12 +402,9 @@ class BendCheck {
   // Each flange must rest on the die's shoulder along at least half of the
   // bend line: a tab cut on a slant is short near one end and still bends.
   std::string flange_rule(const DieTool& die) const {
-    const RealisedTab& tab = rp_.tabs[k_];
-    const double L = (tab.bend_end() - tab.origin).norm();
-    const Vec3 z = tab.x_axis, n_par = rp_.tabs[parent_].normal;
     const double need = die.min_flange_ratio * die.v_opening;
-    const FlangeReach child = flange_reach(tab.corners, tab.origin, z, z.cross(n_par), L, need);
-    const FlangeReach parent = flange_reach(rp_.tabs[parent_].corners, tab.origin, z, n_par.cross(z), L, need);
+    const FlangeReach child = flange_reach(child_depths_, need);
+    const FlangeReach parent = flange_reach(parent_depths_, need);
     const bool child_short = child.share < 0.5;
     if (!child_short && parent.share >= 0.5) return "";
     const FlangeReach& f = child_short ? child : parent;
@@ -345,53 +436,110 @@ class BendCheck {
     return buf;
   }
 
-  void build_tools(const PunchTool& punch, const DieTool& die, bool flipped) {
+  // The punch (with the ram above it) and the die (with the bed below it) of
+  // a run, in the tool frame: each is drawn once per bend and kept, since the
+  // runs try every punch with every die on both sides.
+  void build_tools(int p, int d, bool flipped) {
+    if (punch_sides_.empty()) {
+      punch_sides_.resize(2 * tools_.punches.size());
+      die_sides_.resize(tools_.dies.size());
+    }
+    PunchSide& punch = punch_sides_[2 * p + flipped];
+    if (punch.pieces.empty()) draw_punch(tools_.punches[p], flipped, punch);
+    DieSide& die = die_sides_[d];
+    if (die.halves.empty()) draw_die(tools_.dies[d], die);
+    punch_ = &punch;
+    die_ = &die;
+  }
+
+  void draw_punch(const PunchTool& punch, bool flipped, PunchSide& side) {
     const RealisedTab& tab = rp_.tabs[k_];
-    const double L = (tab.bend_end() - tab.origin).norm(), top = t_ / 2, bottom = -t_ / 2;
+    const double L = (tab.bend_end() - tab.origin).norm(), top = t_ / 2;
     // Segmented (box-and-pan) punches are set up a little shorter than the
     // bend line, so that flanges standing at its ends, a box's sides, clear
     // them: the punch stops the clearance short of each end.
     const double inset = std::min(t_ / 2 + tools_.gap + 1e-6, 0.25 * L);
-    punch_.resize(punch.pieces.size());
+    side.pieces.resize(punch.pieces.size());
     for (size_t i = 0; i < punch.pieces.size(); ++i) {
-      shifted_.clear();
-      for (const Vec2& v : punch.pieces[i]) shifted_.push_back(v + Vec2(0, top));
-      fill_prism(punch_[i], flipped ? mirrored(shifted_) : shifted_, inset, L - inset);
+      std::vector<Vec2> shifted;
+      for (const Vec2& v : punch.pieces[i]) shifted.push_back(v + Vec2(0, top));
+      fill_prism(side.pieces[i], flipped ? mirrored(shifted) : shifted, inset, L - inset);
     }
+    const double rw = tools_.machine.ram_width / 2;
+    fill_prism(side.ram, quad(Vec2(-rw, top + punch.height), Vec2(rw, top + punch.height), Vec2(rw, top + punch.height + 1),
+                              Vec2(-rw, top + punch.height + 1)), -kFar, kFar);
+  }
+
+  void draw_die(const DieTool& die, DieSide& side) {
+    const RealisedTab& tab = rp_.tabs[k_];
+    const double L = (tab.bend_end() - tab.origin).norm(), bottom = -t_ / 2;
     // The die's top a hair below the clearance: the flat sheet lies on it by design.
     const double v = die.v_opening / 2, depth = v / std::tan(die.angle / 2), w = die.width / 2, h = die.height;
     const double seat = bottom - tools_.gap - 1e-6;
     const std::vector<Vec2> left = {Vec2(-w, bottom - h), Vec2(0, bottom - h), Vec2(0, seat - depth),
                                     Vec2(-v, seat), Vec2(-w, seat)};
-    die_.resize(2);
-    fill_prism(die_[0], left, 0, L);
-    fill_prism(die_[1], mirrored(left), 0, L);
-    const double rw = tools_.machine.ram_width / 2, bw = tools_.machine.bed_width / 2;
-    fill_prism(ram_, quad(Vec2(-rw, top + punch.height), Vec2(rw, top + punch.height), Vec2(rw, top + punch.height + 1),
-                          Vec2(-rw, top + punch.height + 1)), -kFar, kFar);
-    fill_prism(bed_, quad(Vec2(-bw, bottom - h - 1), Vec2(bw, bottom - h - 1), Vec2(bw, bottom - h),
-                          Vec2(-bw, bottom - h)), -kFar, kFar);
+    side.halves.resize(2);
+    fill_prism(side.halves[0], left, 0, L);
+    fill_prism(side.halves[1], mirrored(left), 0, L);
+    const double bw = tools_.machine.bed_width / 2;
+    fill_prism(side.bed, quad(Vec2(-bw, bottom - h - 1), Vec2(bw, bottom - h - 1), Vec2(bw, bottom - h),
+                              Vec2(-bw, bottom - h)), -kFar, kFar);
   }
 
-  // The first tab too close to a tool or the machine in the current state.
-  std::string collision(const Pose& pose, const PunchTool& punch, const DieTool& die) const {
+  // Punch pieces, the die's two halves, the ram and the bed.
+  int prism_count() const { return static_cast<int>(punch_->pieces.size()) + 4; }
+
+  // The first tab too close to a tool or the machine in state s of `steps`.
+  //
+  // Conservative advancement: in the tool frame every tab turns about the
+  // bend line (Z) by half the bend's step from one state to the next, so a
+  // point at radius r from that line moves at most r * step / 2. A tab found
+  // d >= need from a tool is therefore clear of it for the next
+  // (d - need) / (r * step / 2) states, which are not looked at (nor, when
+  // every pair is clear, realised). Only states provably clear are skipped,
+  // so the first collision found, and its message, are the same as when
+  // every state is checked.
+  std::string collision(int s, int steps, const PunchTool& punch, const DieTool& die) {
     const double need = t_ / 2 + tools_.gap;
+    const double half_step = std::abs(part_.tabs[k_].params.theta3) / steps / 2;
+    const int np = prism_count(), n_punch = static_cast<int>(punch_->pieces.size());
     for (int i = 0; i < part_.size(); ++i) {
       const bool own = i == k_ || i == parent_;  // the bend's flanges touch punch tip and die by design
-      auto near = [&](const Prism& p) {
-        return polygon_prism_distance(pose.corners[i], pose.boxes[i], pose.normals[i], p, need) < need;
-      };
-      char buf[160];
-      if (!own)
-        for (const Prism& p : punch_)
-          if (near(p)) return std::snprintf(buf, sizeof buf, "tab %d hits the punch %s", i, punch.name.c_str()), buf;
-      if (!own)
-        for (const Prism& p : die_)
-          if (near(p)) return std::snprintf(buf, sizeof buf, "tab %d hits the die %s", i, die.name.c_str()), buf;
-      if (near(ram_)) return std::snprintf(buf, sizeof buf, "tab %d hits the ram above the punch", i), buf;
-      if (near(bed_)) return std::snprintf(buf, sizeof buf, "tab %d hits the bed below the die", i), buf;
+      std::optional<TabView> tab;  // tab i in state s, placed when a pair needs it
+      for (int j = 0; j < np; ++j) {
+        const bool tool = j < n_punch + 2;
+        if (own && tool) continue;
+        int& until = clear_until_[i * np + j];
+        if (until >= s) continue;
+        if (!tab) tab = tab_in_state(i, s, steps);
+        const Prism& prism = j < n_punch       ? punch_->pieces[j]
+                             : j < n_punch + 2 ? die_->halves[j - n_punch]
+                             : j == n_punch + 2 ? punch_->ram
+                                                : die_->bed;
+        const double d = polygon_prism_distance(*tab->corners, tab->box, tab->normal, prism, need);
+        if (d < need) return hit_message(i, j, punch, die);
+        if (tools_.skip_clear_states) until = s + clear_states(d - need, radius_[i] * half_step, steps);
+      }
     }
     return "";
+  }
+
+  // States after this one a tab moving at most `per_state` (m) per state
+  // stays clear with `margin` (m) to spare; a part per million is kept back
+  // for rounding.
+  static int clear_states(double margin, double per_state, int steps) {
+    const double states = margin / (per_state * (1 + 1e-6));
+    return states >= steps ? steps : static_cast<int>(std::floor(states));
+  }
+
+  std::string hit_message(int i, int j, const PunchTool& punch, const DieTool& die) const {
+    const int n_punch = static_cast<int>(punch_->pieces.size());
+    char buf[160];
+    if (j < n_punch) std::snprintf(buf, sizeof buf, "tab %d hits the punch %s", i, punch.name.c_str());
+    else if (j < n_punch + 2) std::snprintf(buf, sizeof buf, "tab %d hits the die %s", i, die.name.c_str());
+    else if (j == n_punch + 2) std::snprintf(buf, sizeof buf, "tab %d hits the ram above the punch", i);
+    else std::snprintf(buf, sizeof buf, "tab %d hits the bed below the die", i);
+    return buf;
   }
 
   const Part& part_;
@@ -401,11 +549,19 @@ class BendCheck {
   RealiseOptions ro_;
   RealisedPart rp_;       // the bend flat (flat_state)
   bool flat_ = false;
+  FlangeDepths child_depths_{}, parent_depths_{};  // of the bent tab and its parent (flat_state)
   RealisedPart pose_rp_;  // scratch for pose()
-  std::vector<Pose> poses_;
-  std::vector<Prism> punch_, die_;  // refilled in place by every build_tools()
-  Prism ram_, bed_;
-  std::vector<Vec2> shifted_;        // scratch of build_tools()
+  std::vector<Pose> poses_;  // realised states (the flat one only, when skipping clear states)
+  std::vector<Vec3> turned_;          // scratch of tab_in_state()
+  int turned_state_ = -1;             // the state cos_ and sin_ are of
+  double cos_ = 1, sin_ = 0;
+  std::vector<PunchSide> punch_sides_;  // per punch and side (2 p + flipped), drawn when first tried
+  std::vector<DieSide> die_sides_;      // per die, drawn when first tried
+  const PunchSide* punch_ = nullptr;    // of the current run (build_tools)
+  const DieSide* die_ = nullptr;
+  std::vector<double> radius_;       // m, per tab: its farthest corner from the bend line (any state)
+  std::vector<char> moves_;          // per tab: in the bent tab's subtree
+  std::vector<int> clear_until_;     // per tab and prism: the last state known clear (collision())
 };
 
 }  // namespace
@@ -432,7 +588,7 @@ BendToolChoice choose_bend_tools(const Part& part, int k, const std::vector<doub
   for (size_t p = 0; p < tools.punches.size(); ++p)
     for (size_t d = 0; d < tools.dies.size(); ++d)
       for (bool flipped : {false, true}) {
-        const Attempt a = check.run(tools.punches[p], tools.dies[d], flipped);
+        const Attempt a = check.run(static_cast<int>(p), static_cast<int>(d), flipped);
         if (a.reason.empty()) return {true, {k, static_cast<int>(p), static_cast<int>(d), flipped}, ""};
         if (nearer(a, nearest)) nearest = a;
       }
