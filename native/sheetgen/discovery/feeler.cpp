@@ -123,9 +123,12 @@ int attach_flange(Part& part, int tab, const RivetPlane& plane, const SheetSpec&
                   double preferred_theta3, bool other_solution) {
   const Manufacturing& m = spec.manufacturing;
   TabParameters& p = part.tabs[tab].params;
-  // The tab's frame does not depend on its own (l, theta1): realise once.
+  // The tab's frame does not depend on its own (l, theta1): realise once,
+  // and only the tabs it hangs from (the discovery's parts have many others).
+  // The storage is the thread's, refilled by every call.
   p.l = std::max(p.l, 1e-3);
-  RealisedPart rp = realise(part);
+  thread_local RealisedPart rp;
+  realise_path_into(part, tab, rp);
   const RealisedTab& rt = rp.tabs[tab];
   const Vec3& N = plane.normal;
   const double xn = rt.x_axis.dot(N), yn = rt.y_axis.dot(N);
@@ -143,7 +146,7 @@ int attach_flange(Part& part, int tab, const RivetPlane& plane, const SheetSpec&
   if (!(l >= m.min_tab_length) || l > m.max_tab_length) return -1;
   p.theta1 = t1;
   p.l = l;
-  realise_into(part, rp);
+  realise_path_into(part, tab, rp);
   const RealisedTab& rk = rp.tabs[tab];
   const Vec3 f0 = rk.corners[2], f1 = rk.corners[3];
   const double far_len = (f1 - f0).norm();

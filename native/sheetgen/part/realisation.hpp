@@ -66,5 +66,9 @@ struct RealiseOptions {
 RealisedPart realise(const Part& part, const RealiseOptions& options = {});
 // Same into an existing object (reuses its buffers; the fast path for the search).
 void realise_into(const Part& part, RealisedPart& out, const RealiseOptions& options = {});
+// The base and the tabs from it to `tab` only (its ancestors and itself),
+// into `out`, sized for the whole part; its other tabs are left as they were.
+// Each realised tab is what realise_into gives: a tab depends on its parent alone.
+void realise_path_into(const Part& part, int tab, RealisedPart& out, const RealiseOptions& options = {});
 
 }  // namespace sheetgen

@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <memory>
 
 #include "sheetgen/core/geometry.hpp"
 #include "sheetgen/part/part.hpp"
@@ -147,6 +148,35 @@ TEST(Realisation, CopiesAreIndependentAndRealiseIsPure) {
   EXPECT_NEAR(ra.tabs[1].corners[2].z(), 0.03, kTol);
   EXPECT_NEAR(rb.tabs[1].corners[2].z(), -0.03, kTol);
   for (int k = 0; k < 4; ++k) EXPECT_EQ(ra.tabs[1].corners[k], ra2.tabs[1].corners[k]);
+}
+
+// realise_path_into sets the base and the tabs from it to one tab as
+// realise_into does, bit for bit, and leaves the part's other tabs alone.
+TEST(Realisation, APathIsRealisedAsTheWholePartRealisesIt) {
+  Part part = square_base();
+  const int t1 = part.add_tab(0, 1, {0.01, 0.02, 0.03, 0.1, 0.05, 70 * kDeg});
+  const int side = part.add_tab(0, 3, {0.005, 0.02, 0.02, 0, 0, -40 * kDeg});
+  const int t2 = part.add_tab(t1, kEndSideEdge, {0.002, 0.02, 0.025, 0, -0.1, -95 * kDeg});
+  const int t3 = part.add_tab(t2, kFarEdge, {0.002, 0.016, 0.02, 0, 0, 45 * kDeg});
+  RealiseOptions o;
+  o.angles = {0, 30 * kDeg, 10 * kDeg, -60 * kDeg, 45 * kDeg};
+  for (const RealiseOptions& options : {RealiseOptions{}, o}) {
+    const RealisedPart whole = realise(part, options);
+    RealisedPart path;
+    path.tabs.resize(part.size());
+    path.tabs[side].corners = {Vec3(7, 7, 7)};  // a marker the call must not touch
+    realise_path_into(part, t3, path, options);
+    for (int i : {0, t1, t2, t3}) {
+      ASSERT_EQ(path.tabs[i].corners.size(), whole.tabs[i].corners.size());
+      for (size_t k = 0; k < whole.tabs[i].corners.size(); ++k)
+        EXPECT_EQ(path.tabs[i].corners[k], whole.tabs[i].corners[k]) << "tab " << i << " corner " << k;
+      EXPECT_EQ(path.tabs[i].normal, whole.tabs[i].normal);
+      EXPECT_EQ(path.tabs[i].origin, whole.tabs[i].origin);
+    }
+    ASSERT_EQ(path.tabs[side].corners.size(), 1u);
+    EXPECT_EQ(path.tabs[side].corners[0], Vec3(7, 7, 7));
+  }
+  EXPECT_THROW(realise_path_into(part, part.size(), *std::make_unique<RealisedPart>()), std::invalid_argument);
 }
 
 TEST(Realisation, MalformedTreeThrows) {
