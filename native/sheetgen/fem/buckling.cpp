@@ -20,8 +20,9 @@ std::vector<Eigen::Vector3d> membrane_resultants(const ShellModel& m, const Shel
     const auto& t = m.triangles[e];
     Vector18d ue;
     for (int k = 0; k < 3; ++k) ue.segment<6>(6 * k) = ref.displacements[t[k]];
-    const ShellStress st = shell_element_stress({m.nodes[t[0]], m.nodes[t[1]], m.nodes[t[2]]}, m.material, ue, element);
-    N[e] = st.membrane * m.material.thickness;
+    const ShellStressOperator op =
+        shell_stress_operator({m.nodes[t[0]], m.nodes[t[1]], m.nodes[t[2]]}, m.material, element, false);
+    N[e] = membrane_stress(op, ue) * m.material.thickness;
   }
   return N;
 }

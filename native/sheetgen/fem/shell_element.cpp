@@ -190,17 +190,14 @@ double von_mises(const Eigen::Vector3d& s) {
   return std::sqrt(std::max(0.0, s(0) * s(0) - s(0) * s(1) + s(1) * s(1) + 3.0 * s(2) * s(2)));
 }
 
-ShellStress shell_element_stress(const std::array<Vec3, 3>& nodes, const Material& material,
-                                 const Vector18d& u, const ShellElementOptions& options) {
+ShellStressOperator shell_stress_operator(const std::array<Vec3, 3>& nodes, const Material& material,
+                                          const ShellElementOptions& options, bool bending) {
   const ShellFrame f = shell_frame(nodes);
-  const double E = material.youngs_modulus, nu = material.poisson_ratio, h = material.thickness;
-  Vector9d um, ub;
-  for (int a = 0; a < 3; ++a) {
-    const Eigen::Vector3d t = f.rotation * u.segment<3>(6 * a);
-    const Eigen::Vector3d r = f.rotation * u.segment<3>(6 * a + 3);
-    um.segment<3>(3 * a) << t(0), t(1), r(2);
-    ub.segment<3>(3 * a) << t(2), r(0), r(1);
-  }
+  const double nu = material.poisson_ratio;
+  ShellStressOperator op;
+  op.rotation = f.rotation;
+  op.two_area = 2.0 * f.area;
+  op.thickness = material.thickness;
   const auto& xy = f.local_xy;
   const double x1 = xy[0].x(), y1 = xy[0].y(), x2 = xy[1].x(), y2 = xy[1].y(), x3 = xy[2].x(), y3 = xy[2].y();
   const double ab = options.alpha_b;
@@ -208,27 +205,57 @@ ShellStress shell_element_stress(const std::array<Vec3, 3>& nodes, const Materia
   const double y12 = y1 - y2, y21 = -y12, y23 = y2 - y3, y32 = -y23, y31 = y3 - y1, y13 = -y31;
   // Basic (constant) membrane strain eps = L^T u / (h A) with the same L as the
   // stiffness; OPT's higher-order strains sum to zero at the centroid.
-  Eigen::Matrix<double, 3, 9> Lt;
-  Lt << y23, 0, ab * y23 * (y13 - y21) / 6, y31, 0, ab * y31 * (y21 - y32) / 6, y12, 0,
+  op.membrane_strain << y23, 0, ab * y23 * (y13 - y21) / 6, y31, 0, ab * y31 * (y21 - y32) / 6, y12, 0,
       ab * y12 * (y32 - y13) / 6,  //
       0, x32, ab * x32 * (x31 - x12) / 6, 0, x13, ab * x13 * (x12 - x23) / 6, 0, x21, ab * x21 * (x23 - x31) / 6,  //
       x32, y23, ab * (x31 * y13 - x12 * y21) / 3, x13, y31, ab * (x12 * y21 - x23 * y32) / 3, x21, y12,
       ab * (x23 * y32 - x31 * y13) / 3;
-  const Eigen::Vector3d eps = Lt * um / (2.0 * f.area);
-  const Eigen::Matrix3d D = plane_stress(E, nu);
-  const Eigen::Vector3d kappa =
-      (options.transverse_shear
-           ? dkmt_curvature_matrix(xy, dkmt_shear_ratios(xy, nu, h, options.shear_correction), 1.0 / 3, 1.0 / 3)
-           : dkt_curvature_matrix(xy, 1.0 / 3, 1.0 / 3)) *
-      ub;
+  op.elasticity = plane_stress(material.youngs_modulus, nu);
+  if (!bending) return op;  // the curvature matrix is most of the cost
+  op.curvature = options.transverse_shear ? dkmt_curvature_matrix(xy, dkmt_shear_ratios(xy, nu, material.thickness,
+                                                                                          options.shear_correction),
+                                                                  1.0 / 3, 1.0 / 3)
+                                          : dkt_curvature_matrix(xy, 1.0 / 3, 1.0 / 3);
+  return op;
+}
+
+namespace {
+// The element's membrane (u, v, rz) and bending (w, rx, ry) DOFs in its local frame.
+void local_dofs(const ShellStressOperator& op, const Vector18d& u, Vector9d& um, Vector9d& ub) {
+  for (int a = 0; a < 3; ++a) {
+    const Eigen::Vector3d t = op.rotation * u.segment<3>(6 * a);
+    const Eigen::Vector3d r = op.rotation * u.segment<3>(6 * a + 3);
+    um.segment<3>(3 * a) << t(0), t(1), r(2);
+    ub.segment<3>(3 * a) << t(2), r(0), r(1);
+  }
+}
+}  // namespace
+
+Eigen::Vector3d membrane_stress(const ShellStressOperator& op, const Vector18d& u) {
+  Vector9d um, ub;
+  local_dofs(op, u, um, ub);
+  const Eigen::Vector3d eps = op.membrane_strain * um / op.two_area;
+  return op.elasticity * eps;
+}
+
+ShellStress shell_element_stress(const ShellStressOperator& op, const Vector18d& u) {
+  Vector9d um, ub;
+  local_dofs(op, u, um, ub);
+  const Eigen::Vector3d eps = op.membrane_strain * um / op.two_area;
+  const Eigen::Vector3d kappa = op.curvature * ub;
   ShellStress s;
-  s.membrane = D * eps;
-  const Eigen::Vector3d bending = (0.5 * h) * (D * kappa);  // sigma(z) = z D kappa at z = t/2
+  s.membrane = op.elasticity * eps;
+  const Eigen::Vector3d bending = (0.5 * op.thickness) * (op.elasticity * kappa);  // sigma(z) = z D kappa at z = t/2
   s.top = s.membrane + bending;
   s.bottom = s.membrane - bending;
   s.von_mises_top = von_mises(s.top);
   s.von_mises_bottom = von_mises(s.bottom);
   return s;
+}
+
+ShellStress shell_element_stress(const std::array<Vec3, 3>& nodes, const Material& material,
+                                 const Vector18d& u, const ShellElementOptions& options) {
+  return shell_element_stress(shell_stress_operator(nodes, material, options), u);
 }
 
 Eigen::Matrix3d stress_to_world(const ShellFrame& frame, const Eigen::Vector3d& s) {

@@ -91,6 +91,24 @@ double von_mises(const Eigen::Vector3d& stress);
 ShellStress shell_element_stress(const std::array<Vec3, 3>& nodes, const Material& material,
                                  const Vector18d& displacements, const ShellElementOptions& options = {});
 
+// What the centroid stresses take from the element alone, so that several load
+// cases (or the buckling's membrane resultants) reuse it: the same stresses,
+// bit for bit, as shell_element_stress of the nodes.
+struct ShellStressOperator {
+  Eigen::Matrix3d rotation;                    // world -> local frame
+  Eigen::Matrix<double, 3, 9> membrane_strain;  // L^T: eps = L^T u_m / (2 A)
+  double two_area = 0;                         // m^2
+  Eigen::Matrix3d elasticity;                  // plane-stress D, Pa
+  Eigen::Matrix<double, 3, 9> curvature;       // kappa = B u_b at the centroid (1/m per unit DOF)
+  double thickness = 0;                        // m
+};
+// bending = false leaves `curvature` unset: for membrane_stress only.
+ShellStressOperator shell_stress_operator(const std::array<Vec3, 3>& nodes, const Material& material,
+                                          const ShellElementOptions& options = {}, bool bending = true);
+ShellStress shell_element_stress(const ShellStressOperator& op, const Vector18d& displacements);
+// The membrane stress alone (ShellStress::membrane), without the bending part.
+Eigen::Vector3d membrane_stress(const ShellStressOperator& op, const Vector18d& displacements);
+
 // A local-frame stress (sxx, syy, txy) as a 3 x 3 world tensor, Pa.
 Eigen::Matrix3d stress_to_world(const ShellFrame& frame, const Eigen::Vector3d& stress);
 

@@ -294,17 +294,23 @@ int deflection_node(const ShellModel& m, const std::vector<NodalLoad>& loads, co
   return node;
 }
 
-void element_stresses(const ShellModel& m, const ShellElementOptions& element, ShellResult& res) {
+// Every case's element stresses, each element's operator built once for all of them.
+void element_stresses(const ShellModel& m, const ShellElementOptions& element, std::vector<ShellResult>& cases) {
   const int n_elem = static_cast<int>(m.triangles.size());
-  res.von_mises_top.resize(n_elem);
-  res.von_mises_bottom.resize(n_elem);
+  for (ShellResult& res : cases) {
+    res.von_mises_top.resize(n_elem);
+    res.von_mises_bottom.resize(n_elem);
+  }
   for (int e = 0; e < n_elem; ++e) {
     const auto& t = m.triangles[e];
-    Vector18d ue;
-    for (int k = 0; k < 3; ++k) ue.segment<6>(6 * k) = res.displacements[t[k]];
-    const ShellStress st = shell_element_stress({m.nodes[t[0]], m.nodes[t[1]], m.nodes[t[2]]}, m.material, ue, element);
-    res.von_mises_top[e] = st.von_mises_top;
-    res.von_mises_bottom[e] = st.von_mises_bottom;
+    const ShellStressOperator op = shell_stress_operator({m.nodes[t[0]], m.nodes[t[1]], m.nodes[t[2]]}, m.material, element);
+    for (ShellResult& res : cases) {
+      Vector18d ue;
+      for (int k = 0; k < 3; ++k) ue.segment<6>(6 * k) = res.displacements[t[k]];
+      const ShellStress st = shell_element_stress(op, ue);
+      res.von_mises_top[e] = st.von_mises_top;
+      res.von_mises_bottom[e] = st.von_mises_bottom;
+    }
   }
 }
 
@@ -412,12 +418,27 @@ void take_max_von_mises(ShellResult& res, bool honour_rule) {
 
 // Element stresses, the elements the stress rule leaves out, the maximum over
 // the rest and the margin of safety.
-void apply_stress_rule(const ShellModel& m, const ShellSolveOptions& options, ShellResult& res) {
-  element_stresses(m, options.element, res);
+// What the stress rule takes from the model alone: the same for every case,
+// so a solve of several cases finds it once.
+struct StressRuleGeometry {
+  std::vector<int> reentrant_corners;
+  std::vector<bool> excluded;  // #E, within a singular point's radius
+};
+
+StressRuleGeometry stress_rule_geometry(const ShellModel& m, const ShellSolveOptions& options) {
+  StressRuleGeometry g;
   const MeshSizes sizes = mesh_sizes(m);
-  res.reentrant_corners = find_reentrant_corners(m, options.reentrant_corner_angle);
-  const SingularPoints sp = singular_points(m, res.reentrant_corners, sizes.node_size, options);
-  res.stress_excluded = elements_near_singular_points(m, sizes.centroid, sp);
+  g.reentrant_corners = find_reentrant_corners(m, options.reentrant_corner_angle);
+  const SingularPoints sp = singular_points(m, g.reentrant_corners, sizes.node_size, options);
+  g.excluded = elements_near_singular_points(m, sizes.centroid, sp);
+  return g;
+}
+
+// The maximum over the elements the rule keeps, of stresses element_stresses set.
+void apply_stress_rule(const ShellModel& m, const ShellSolveOptions& options, const StressRuleGeometry& g,
+                       ShellResult& res) {
+  res.reentrant_corners = g.reentrant_corners;
+  res.stress_excluded = g.excluded;
   take_max_von_mises(res, true);
   if (res.max_von_mises_element < 0) {
     res.stress_rule_fell_back = true;
@@ -428,10 +449,10 @@ void apply_stress_rule(const ShellModel& m, const ShellSolveOptions& options, Sh
                              : std::numeric_limits<double>::infinity();
 }
 
-
-// The static answer of one case from its reduced load and displacement vectors.
+// The static answer of one case from its reduced load and displacement vectors,
+// before its stresses.
 ShellResult finish_case(const ShellModel& m, const DofMap& map, const ShellLoadCase& lc, const Eigen::VectorXd& f,
-                        const Eigen::VectorXd& uh, const ShellSolveOptions& options) {
+                        const Eigen::VectorXd& uh) {
   ShellResult res;
   res.case_name = lc.name;
   res.reduced_dofs = map.reduced;
@@ -446,9 +467,6 @@ ShellResult finish_case(const ShellModel& m, const DofMap& map, const ShellLoadC
     for (const NodalLoad& load : lc.loads) force += load.force;
     if (force.norm() > 0) res.deflection_along_load = u.dot(force.normalized());
   }
-  const auto t0 = Clock::now();
-  apply_stress_rule(m, options, res);
-  res.stress_seconds = seconds_since(t0);
   return res;
 }
 
@@ -517,13 +535,18 @@ std::vector<ShellResult> ShellSolver::Impl::solve(const ShellModel& m, const std
   const Eigen::MatrixXd U = factor.solve(F);  // one factorisation, every case
   const double solve_seconds = seconds_since(t0);
   std::vector<ShellResult> results;
-  for (size_t c = 0; c < cases.size(); ++c) {
-    ShellResult res = finish_case(m, map, cases[c], F.col(c), U.col(c), options);
+  for (size_t c = 0; c < cases.size(); ++c) results.push_back(finish_case(m, map, cases[c], F.col(c), U.col(c)));
+  t0 = Clock::now();
+  element_stresses(m, options.element, results);
+  const StressRuleGeometry stress_rule = stress_rule_geometry(m, options);
+  for (ShellResult& res : results) apply_stress_rule(m, options, stress_rule, res);
+  const double stress_seconds = seconds_since(t0);
+  for (ShellResult& res : results) {  // each case's times are the shared steps'
     res.pattern_reused = timing.pattern_reused;
     res.assemble_seconds = timing.assemble_seconds;
     res.factor_seconds = timing.factor_seconds;
     res.solve_seconds = solve_seconds;
-    results.push_back(std::move(res));
+    res.stress_seconds = stress_seconds;
   }
   return results;
 }

@@ -1,10 +1,13 @@
 // Several load cases on one factorisation (docs/fem.md "Load cases").
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <array>
 #include <cmath>
 
 #include "fem_brackets.hpp"
 #include "sheetgen/fem/fem_error.hpp"
+#include "sheetgen/fem/shell_element.hpp"
 #include "sheetgen/fem/shell_model.hpp"
 
 namespace sheetgen {
@@ -48,6 +51,40 @@ TEST(LoadCases, SixCasesOnOneFactorisationEqualSixSolves) {
     EXPECT_NEAR(all[c].max_von_mises / alone.max_von_mises, 1.0, 1e-10);
     EXPECT_NEAR(all[c].margin_of_safety, alone.margin_of_safety, 1e-10 * std::abs(alone.margin_of_safety));
   }
+}
+
+// The cases share each element's stress operator and the stress rule's
+// singular points: every case's element stresses are, bit for bit, those of
+// its own displacements, the excluded elements and corners those of a
+// one-case solve, and the membrane stress without the bending operator is
+// the full stress's membrane part.
+TEST(LoadCases, SharedStressOperatorsGiveEachCasesOwnStresses) {
+  const ShellModel m = six_case_bracket();
+  ShellSolver solver;
+  const std::vector<ShellResult> all = solver.solve_cases(m);
+  ShellModel one = m;
+  one.load_cases.clear();
+  one.loads = m.load_cases[0].loads;
+  const ShellResult alone = solve_shell(one);
+  int compared = 0;
+  for (const ShellResult& res : all) {
+    EXPECT_EQ(res.stress_excluded, alone.stress_excluded);
+    EXPECT_EQ(res.reentrant_corners, alone.reentrant_corners);
+    for (size_t e = 0; e < m.triangles.size(); ++e) {
+      const auto& t = m.triangles[e];
+      const std::array<Vec3, 3> nodes = {m.nodes[t[0]], m.nodes[t[1]], m.nodes[t[2]]};
+      Vector18d ue;
+      for (int k = 0; k < 3; ++k) ue.segment<6>(6 * k) = res.displacements[t[k]];
+      const ShellStress own = shell_element_stress(nodes, m.material, ue);
+      ASSERT_EQ(res.von_mises_top[e], own.von_mises_top) << res.case_name << ", element " << e;
+      ASSERT_EQ(res.von_mises_bottom[e], own.von_mises_bottom) << res.case_name << ", element " << e;
+      const Eigen::Vector3d membrane = membrane_stress(shell_stress_operator(nodes, m.material, {}, false), ue);
+      ASSERT_EQ(membrane, own.membrane) << res.case_name << ", element " << e;
+      ++compared;
+    }
+  }
+  EXPECT_EQ(compared, 6 * static_cast<int>(m.triangles.size()));
+  EXPECT_GT(std::count(alone.stress_excluded.begin(), alone.stress_excluded.end(), true), 0);
 }
 
 // deflection_along_load is the load node's translation along the resultant force.
