@@ -416,8 +416,6 @@ void take_max_von_mises(ShellResult& res, bool honour_rule) {
   }
 }
 
-// Element stresses, the elements the stress rule leaves out, the maximum over
-// the rest and the margin of safety.
 // What the stress rule takes from the model alone: the same for every case,
 // so a solve of several cases finds it once.
 struct StressRuleGeometry {
@@ -434,7 +432,8 @@ StressRuleGeometry stress_rule_geometry(const ShellModel& m, const ShellSolveOpt
   return g;
 }
 
-// The maximum over the elements the rule keeps, of stresses element_stresses set.
+// The elements the stress rule leaves out, the maximum over the rest of the
+// stresses element_stresses set, and the margin of safety.
 void apply_stress_rule(const ShellModel& m, const ShellSolveOptions& options, const StressRuleGeometry& g,
                        ShellResult& res) {
   res.reentrant_corners = g.reentrant_corners;
