@@ -11,6 +11,7 @@
 #include <utility>
 
 #include "sheetgen/core/polygon_geometry.hpp"
+#include "sheetgen/part/clear_states.hpp"
 
 namespace sheetgen {
 
@@ -150,13 +151,6 @@ class Simulator {
         radius_[a] = std::max(radius_[a], (r - r.dot(e) * e).norm());
       }
     }
-  }
-
-  // States after this one a tab moving at most `per_state` (m) per state
-  // stays clear with `margin` (m) to spare; a part per million is kept back for rounding.
-  static int clear_states(double margin, double per_state, int steps) {
-    const double states = margin / (per_state * (1 + 1e-6));
-    return states >= steps ? steps : static_cast<int>(std::floor(states));
   }
 
   const Part& part_;

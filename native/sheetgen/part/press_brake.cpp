@@ -9,6 +9,7 @@
 #include <stdexcept>
 
 #include "sheetgen/core/polygon_geometry.hpp"
+#include "sheetgen/part/clear_states.hpp"
 #include "sheetgen/part/realisation.hpp"
 
 namespace sheetgen {
@@ -522,14 +523,6 @@ class BendCheck {
       }
     }
     return "";
-  }
-
-  // States after this one a tab moving at most `per_state` (m) per state
-  // stays clear with `margin` (m) to spare; a part per million is kept back
-  // for rounding.
-  static int clear_states(double margin, double per_state, int steps) {
-    const double states = margin / (per_state * (1 + 1e-6));
-    return states >= steps ? steps : static_cast<int>(std::floor(states));
   }
 
   std::string hit_message(int i, int j, const PunchTool& punch, const DieTool& die) const {

@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "sheetgen/part/bend_sequence.hpp"
+#include "sheetgen/part/clear_states.hpp"
 #include "sheetgen/part/press_brake.hpp"
 #include "../common/sheet_fixture.hpp"
 
@@ -52,6 +53,17 @@ void expect_same_collision(const BendCollision& a, const BendCollision& b) {
   EXPECT_DOUBLE_EQ(a.fraction, b.fraction);
   EXPECT_DOUBLE_EQ(a.angle, b.angle);
   EXPECT_NEAR(a.distance, b.distance, 1e-12);  // m: the moved corners equal the realised ones to rounding
+}
+
+// The skip itself: margin / motion per state, rounded down and kept back a
+// part per million, at most the stroke; nothing when it gives no number.
+TEST(ClearStateSkipping, StatesClearAheadAreTheMarginOverTheMotion) {
+  EXPECT_EQ(clear_states(5e-3, 1e-3, 10), 4);    // 4.999995 states
+  EXPECT_EQ(clear_states(5.1e-3, 1e-3, 10), 5);
+  EXPECT_EQ(clear_states(1e-3, 1e-3, 10), 0);    // exactly one state's motion: not skipped
+  EXPECT_EQ(clear_states(1.0, 1e-3, 10), 10);    // capped at the stroke
+  EXPECT_EQ(clear_states(1e-3, 0.0, 10), 10);    // a tab on the bend line does not move
+  EXPECT_EQ(clear_states(0.0, 0.0, 10), 0);      // 0 / 0
 }
 
 TEST(ClearStateSkipping, BendSequencesAreThoseOfCheckingEveryState) {
