@@ -12,6 +12,7 @@
 #include "sheetgen/core/input_error.hpp"
 #include "sheetgen/core/json_reader.hpp"
 #include "sheetgen/core/mesh_io.hpp"
+#include "sheetgen/core/sheet_gauges.hpp"
 
 namespace sheetgen {
 
@@ -375,10 +376,36 @@ void parse_requirements(const JsonNode& root, Requirements& req) {
   if (auto f = r->find("min_frequency_hz")) req.min_frequency_hz = f->as_positive();
 }
 
+// material.gauges (m): ascending, each thicker than material.thickness;
+// absent: the standard gauges above it (core/sheet_gauges.hpp).
+void parse_gauges(const JsonNode& root, Material& mat) {
+  std::optional<JsonNode> m = root.find("material");
+  std::optional<JsonNode> g = m ? m->find("gauges") : std::nullopt;
+  if (!g) {
+    mat.gauges = default_gauges(mat.thickness);
+    return;
+  }
+  g->expect_array();
+  mat.gauges.clear();
+  for (size_t k = 0; k < g->size(); ++k) {
+    const JsonNode e = g->at(k);
+    const double v = e.as_positive();
+    if (v <= mat.thickness) {
+      char t[32];
+      std::snprintf(t, sizeof t, "%.4g", mat.thickness);
+      e.fail(std::string("must be thicker than material.thickness (") + t + " m): gauges are the thicker sheets tried "
+             "when the problem's sheet gives a load no part");
+    }
+    if (!mat.gauges.empty() && v <= mat.gauges.back()) e.fail("gauges must be listed thinnest first, each once");
+    mat.gauges.push_back(v);
+  }
+}
+
 void parse_settings(const JsonNode& root, Problem& p) {
   if (auto m = root.find("material")) {
     m->expect_object();
-    reject_unknown(*m, {"name", "youngs_modulus", "poisson_ratio", "density", "yield_strength", "ultimate_strength", "thickness"});
+    reject_unknown(*m, {"name", "youngs_modulus", "poisson_ratio", "density", "yield_strength", "ultimate_strength", "thickness",
+                        "gauges"});
     Material& mat = p.material;
     mat.youngs_modulus = m->positive_or("youngs_modulus", mat.youngs_modulus);
     mat.poisson_ratio = m->number_or("poisson_ratio", mat.poisson_ratio);
@@ -388,6 +415,7 @@ void parse_settings(const JsonNode& root, Problem& p) {
     mat.ultimate_strength = m->positive_or("ultimate_strength", mat.ultimate_strength);
     mat.thickness = m->positive_or("thickness", mat.thickness);
   }
+  parse_gauges(root, p.material);
   const double t = p.material.thickness;
   parse_requirements(root, p.requirements);
   Manufacturing& mf = p.manufacturing;
@@ -408,13 +436,24 @@ void parse_settings(const JsonNode& root, Problem& p) {
   }
   auto pos = [&](const char* key, double fallback) { return m ? m->positive_or(key, fallback) : fallback; };
   auto nonneg = [&](const char* key, double fallback) { return m ? m->non_negative_or(key, fallback) : fallback; };
-  mf.bend_radius = nonneg("bend_radius", 4.0 * t);
+  // The lengths that scale with t: kept as given, so a thicker gauge derives its own.
+  auto given = [&](const char* key, bool zero_ok) -> std::optional<double> {
+    std::optional<JsonNode> n = m ? m->find(key) : std::nullopt;
+    if (!n) return std::nullopt;
+    return zero_ok ? n->as_non_negative() : n->as_positive();
+  };
+  ThicknessScaledInput& in = mf.given;
+  in.bend_radius = given("bend_radius", true);
+  in.min_flange = given("min_flange", false);
+  in.min_tab_width = given("min_tab_width", false);
+  in.min_tab_length = given("min_tab_length", false);
+  in.rivet_diameter = given("rivet_diameter", false);
+  in.rivet_edge_distance = given("rivet_edge_distance", false);
+  in.rivet_pitch = given("rivet_pitch", false);
+  derive_thickness_defaults(mf, t);
   mf.k_factor = nonneg("k_factor", mf.k_factor);
   if (mf.k_factor > 1.0) m->at("k_factor").fail("must lie in [0, 1]");
   mf.kerf = nonneg("kerf", mf.kerf);
-  mf.min_flange = pos("min_flange", 4.0 * t + mf.bend_radius);
-  mf.min_tab_width = pos("min_tab_width", 10.0 * t);
-  mf.min_tab_length = pos("min_tab_length", 2.0 * mf.bend_radius + 2.0 * t);
   mf.max_tab_length = pos("max_tab_length", mf.max_tab_length);
   if (mf.max_tab_length < mf.min_tab_length) (m ? m->at("max_tab_length") : root).fail("max_tab_length is below min_tab_length");
   mf.min_bend_angle = pos("min_bend_angle", mf.min_bend_angle);
@@ -422,11 +461,6 @@ void parse_settings(const JsonNode& root, Problem& p) {
   if (mf.max_bend_angle > M_PI || mf.max_bend_angle < mf.min_bend_angle)
     (m ? m->at("max_bend_angle") : root).fail("must lie between min_bend_angle and pi (radians)");
   mf.max_skew = nonneg("max_skew", mf.max_skew);
-  // 1/8 in (3.175 mm) rivets are the smallest structural size; thicker sheet takes D >= 2 t.
-  const double default_rivet = std::max(3.175e-3, std::ceil(2.0 * t / 0.79375e-3) * 0.79375e-3);
-  mf.rivet_diameter = pos("rivet_diameter", default_rivet);
-  mf.rivet_edge_distance = pos("rivet_edge_distance", 2.0 * mf.rivet_diameter);
-  mf.rivet_pitch = pos("rivet_pitch", 6.0 * mf.rivet_diameter);
 
   if (auto c = root.find("cost")) parse_cost_model(*c, p.cost);
 

@@ -67,6 +67,11 @@ struct Material {  // Al 2024-T3 sheet by default (docs/architecture.md "Units a
   double yield_strength = 345e6;   // Pa, Fty
   double ultimate_strength = 483e6;// Pa, Ftu
   double thickness = 1.6e-3;       // m (0.063 in)
+  // Thicker sheets the shop stocks, m, ascending, each above `thickness`: a
+  // load with no valid part at `thickness` is searched again at each in turn
+  // (core/sheet_gauges.hpp). The reader's default is the standard 2024-T3
+  // gauges above `thickness`; empty: the problem's sheet only.
+  std::vector<double> gauges;
 };
 
 struct Requirements {
@@ -95,7 +100,16 @@ struct Requirements {
   double compliance_limit(const LoadCase& load_case) const;
 };
 
+// The manufacturing lengths whose defaults are multiples of the sheet
+// thickness, as the problem file gave them (unset: the default), so that a
+// thicker gauge derives its own (core/sheet_gauges.hpp). m.
+struct ThicknessScaledInput {
+  std::optional<double> bend_radius, min_flange, min_tab_width, min_tab_length;
+  std::optional<double> rivet_diameter, rivet_edge_distance, rivet_pitch;
+};
+
 struct Manufacturing {  // lengths m, angles rad; defaults depend on thickness t (filled on load)
+  ThicknessScaledInput given;    // what the file said of the lengths below that scale with t
   double bend_radius = 0;        // inside bend radius R; default 4 t
   double k_factor = 0.45;        // neutral-axis position as a fraction of t
   double kerf = 0.2e-3;          // gap kept between flat-pattern pieces, m

@@ -13,5 +13,6 @@ set(SHEETGEN_CORE_SOURCES
   load_cases.cpp
   cost_model.cpp
   press_brake_tooling.cpp
+  sheet_gauges.cpp
   problem.cpp
 )
