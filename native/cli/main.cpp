@@ -11,6 +11,7 @@
 #include "sheetgen/core/input_error.hpp"
 #include "sheetgen/core/malloc_settings.hpp"
 #include "sheetgen/core/problem.hpp"
+#include "sheetgen/core/sheet_gauges.hpp"
 #include "sheetgen/env/environment.hpp"
 #include "sheetgen/fem/ccx_export.hpp"
 #include "sheetgen/fem/fem_error.hpp"
@@ -312,9 +313,14 @@ void solve_ours(const sheetgen::Problem& problem, const sheetgen::PartModel& mod
 
 int export_ccx(const ExportCcxArgs& a) {
   const nlohmann::json doc = read_result_json(a.result);
-  const sheetgen::Problem problem = problem_of(doc, a.result);
-  const int load_index = load_index_of(problem, a.load, a.result);
+  const sheetgen::Problem scene = problem_of(doc, a.result);
+  const int load_index = load_index_of(scene, a.load, a.result);
   const nlohmann::json& part = part_of(doc, a.load, a.result);
+  // The sheet the part is made of: a thicker gauge when the problem's gave the load none (docs/pipeline.md).
+  const nlohmann::json* t = part.contains("thickness_m") ? &part["thickness_m"] : nullptr;
+  if (t && !(t->is_number() && t->get<double>() > 0))
+    throw sheetgen::InputError(a.result, "parts[load=" + a.load + "].thickness_m", "must be a positive number (m)");
+  const sheetgen::Problem problem = sheetgen::problem_at_sheet(scene, t ? t->get<double>() : 0.0);
   const sheetgen::PlateGeometry geometry = sheetgen::plate_geometry_from_json(part.dump(), a.result);
   sheetgen::PartModelOptions model_options;
   model_options.element_size = a.element_size_mm * 1e-3;
@@ -323,6 +329,15 @@ int export_ccx(const ExportCcxArgs& a) {
   const sheetgen::CcxDeckMap map = write_deck(model, a);
   if (a.solve) solve_ours(problem, model, map, a);
   return 0;
+}
+
+// "  sheet 3.18 mm (thicker gauge 5)" for a part the problem's sheet could not
+// give (docs/pipeline.md "Thicker gauges"); empty otherwise.
+std::string sheet_note(const sheetgen::Problem& problem, const sheetgen::LoadOutcome& l) {
+  if (!(l.thickness > problem.material.thickness)) return {};
+  char s[64];
+  std::snprintf(s, sizeof s, "  sheet %.3g mm (thicker gauge %d)", l.thickness * 1e3, l.gauges_tried);
+  return s;
 }
 
 std::atomic<bool> g_interrupted{false};
@@ -385,7 +400,8 @@ int solve(const SolveArgs& a) {
       // The second and third searches of a load (web roots, flat extensions;
       // docs/pipeline.md) restart the bar; say so.
       const std::string label = std::string(sheetgen::to_string(stage)) +
-                                (progress.flat_pass.load() ? " (flat)" : progress.web_roots.load() ? " (webs)" : "");
+                                (progress.flat_pass.load() ? " (flat)" : progress.web_roots.load() ? " (webs)" : "") +
+                                (progress.gauge.load() > 0 ? " (gauge " + std::to_string(progress.gauge.load()) + ")" : "");
       std::fprintf(stderr, "\r  load %d/%d [%-*s] %-18s segments %3d  evaluated %4d  best %.1f cm^2   ", progress.load.load() + 1,
                    progress.loads.load(), width, std::string(filled, '#').c_str(), label.c_str(),
                    progress.discovery.segments.load(), progress.compose.evaluated.load(), progress.compose.best_cost.load() * 1e4);
@@ -408,9 +424,10 @@ int solve(const SolveArgs& a) {
   }
   for (const auto& l : result.loads) {
     if (l.ok)
-      std::printf("%-20s ok  area %.1f cm^2  mass %.1f g  bends %d  compliance %.4g J (limit %.4g)  deflection along F %.3f mm "
+      std::printf("%-20s ok  area %.1f cm^2  mass %.1f g%s  bends %d  compliance %.4g J (limit %.4g)  deflection along F %.3f mm "
                   "(|u| %.3f mm)  MS %.2f  %.1f s\n",
-                  l.load.c_str(), l.part.area * 1e4, l.part.area * problem.material.thickness * problem.material.density * 1e3,
+                  l.load.c_str(), l.part.area * 1e4, l.part.area * l.thickness * problem.material.density * 1e3,
+                  sheet_note(problem, l).c_str(),
                   l.part.bends, l.part.fem.compliance, l.part.fem.compliance_limit, l.part.fem.deflection_along_force * 1e3,
                   l.part.fem.deflection * 1e3, l.part.fem.margin_of_safety, l.total_seconds);
     else

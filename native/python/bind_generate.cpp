@@ -21,6 +21,8 @@ void bind_generate(py::module_& m) {
       .def_property_readonly("segments", [](const GenerateProgress& p) { return p.discovery.segments.load(); })
       .def_property_readonly("evaluated", [](const GenerateProgress& p) { return p.compose.evaluated.load(); })
       .def_property_readonly("best_cost_m2", [](const GenerateProgress& p) { return p.compose.best_cost.load(); })
+      .def_property_readonly("gauge", [](const GenerateProgress& p) { return p.gauge.load(); },
+                             "0: the problem's sheet; k: the load is searched again at its k-th thicker gauge")
       .def("cancel", [](GenerateProgress& p) { p.cancel = true; })
       .def_property_readonly("cancelled", [](const GenerateProgress& p) { return p.cancel.load(); });
 

@@ -7,6 +7,7 @@
 
 #include "sheetgen/core/cancelled.hpp"
 #include "sheetgen/core/geometry.hpp"
+#include "sheetgen/core/sheet_gauges.hpp"
 #include "sheetgen/env/environment.hpp"
 #include "sheetgen/fem/rivet_layout.hpp"
 #include "sheetgen/part/validity.hpp"
@@ -86,22 +87,41 @@ class LoadEnvironments {
  public:
   // The next load's environment; nullptr when building it was cancelled.
   const Environment* next(const Problem& problem, GenerateProgress* progress) {
-    EnvironmentOptions eo;
-    if (progress) eo.cancel = &progress->cancel;
     try {
-      if (!env_) env_ = std::make_unique<Environment>(problem, eo);
-      else if (!new_parts_.empty()) env_ = std::make_unique<Environment>(*env_, new_parts_, eo);
+      if (!env_) env_ = std::make_unique<Environment>(problem, options(progress));
+      else if (!new_parts_.empty()) env_ = std::make_unique<Environment>(*env_, new_parts_, options(progress));
+      if (!new_parts_.empty()) additions_.push_back(std::move(new_parts_));
       new_parts_.clear();
     } catch (const Cancelled&) {
       return nullptr;
     }
     return env_.get();
   }
+  // The current load's environment built again for another sheet of the
+  // problem (a thicker gauge): the scene's fields at that sheet's voxel and
+  // band, then the earlier parts added as next() added them. So a load
+  // searched at a gauge sees what a problem written at that thickness would
+  // show it (docs/pipeline.md "Thicker gauges"). nullptr when cancelled.
+  std::unique_ptr<Environment> at_sheet(const Problem& sheet, GenerateProgress* progress) const {
+    try {
+      auto env = std::make_unique<Environment>(sheet, options(progress));
+      for (const auto& parts : additions_) env = std::make_unique<Environment>(*env, parts, options(progress));
+      return env;
+    } catch (const Cancelled&) {
+      return nullptr;
+    }
+  }
   // A finished part: an obstacle from the next load on.
   void add_part(EnvironmentMesh part) { new_parts_.push_back(std::move(part)); }
 
  private:
+  static EnvironmentOptions options(GenerateProgress* progress) {
+    EnvironmentOptions eo;
+    if (progress) eo.cancel = &progress->cancel;
+    return eo;
+  }
   std::vector<EnvironmentMesh> new_parts_;  // made since `env_` was built
+  std::vector<std::vector<EnvironmentMesh>> additions_;  // the parts `env_` added, one batch per rebuild
   std::unique_ptr<Environment> env_;
 };
 
@@ -193,6 +213,81 @@ void plan_answer(const Problem& answer_scene, int li, LoadOutcome& out) {
   if (out.ok) place_rivets(answer_scene, li, out);
 }
 
+// The search of one load at the sheet of `env`'s problem: the blocked-base
+// test, every pass, and the answer's manufacturing plan; `blocked` says the
+// base tab itself is not clear. False when cancelled.
+bool search_sheet(const Environment& env, int li, const GenerateOptions& options, bool flat_fallback,
+                  GenerateProgress* progress, LoadSearch& search, bool& blocked) {
+  LoadOutcome& out = search.answer;
+  out.thickness = env.problem().material.thickness;
+  out.reason = blocked_load_reason(env, li, out.load);
+  blocked = !out.reason.empty();
+  if (blocked) return true;
+  LoadSearch found = search_load(env, li, out, options, flat_fallback, progress);
+  if (!found.finished || cancel_requested(progress)) return false;
+  search = std::move(found);
+  search.answer.thickness = env.problem().material.thickness;
+  if (progress) progress->stage = static_cast<int>(Stage::Plan);
+  plan_answer(search.flat_scene ? *search.flat_scene : env.problem(), li, search.answer);
+  return true;
+}
+
+// The work of another search of the same load, added to `to`: environment,
+// discovery and composition time, FEM calls.
+void add_search_work(LoadOutcome& to, const LoadOutcome& from) {
+  to.environment_seconds += from.environment_seconds;
+  to.discovery_seconds += from.discovery_seconds;
+  to.composition_seconds += from.composition_seconds;
+  to.fem_calls += from.fem_calls;
+}
+
+// Thicker gauges (docs/pipeline.md "Thicker gauges"): a load that the
+// problem's sheet gives no valid part is searched again at each of
+// material.gauges in turn, as a designer takes the next gauge up for a bracket
+// that is too soft; the first valid answer is kept, with `gauge_env` the
+// environment of its sheet. When none gives one the answer stays the
+// problem's sheet's nearest candidate, and its reason names the gauges tried.
+// A base tab that is blocked at one gauge is blocked at every thicker one.
+bool search_gauges(const Problem& problem, const LoadEnvironments& environments, int li, const GenerateOptions& options,
+                   bool flat_fallback, GenerateProgress* progress, LoadSearch& search,
+                   std::unique_ptr<Environment>& gauge_env) {
+  const std::vector<double>& gauges = problem.material.gauges;
+  LoadOutcome& first = search.answer;  // the problem's sheet's, which the work of every gauge is added to
+  std::string tried;
+  for (size_t k = 0; k < gauges.size() && !cancel_requested(progress); ++k) {
+    const auto t0 = std::chrono::steady_clock::now();
+    if (progress) progress->stage = static_cast<int>(Stage::Environment);
+    std::unique_ptr<Environment> sheet = environments.at_sheet(at_gauge(problem, gauges[k]), progress);
+    if (!sheet) return false;
+    LoadSearch thick;
+    thick.answer.load = first.load;
+    thick.answer.environment_seconds = seconds_since(t0);
+    if (progress) progress->gauge = static_cast<int>(k + 1);
+    bool blocked = false;
+    const bool finished = search_sheet(*sheet, li, options, flat_fallback, progress, thick, blocked);
+    if (progress) progress->gauge = 0;
+    if (!finished) return false;
+    add_search_work(first, thick.answer);
+    first.gauges_tried = static_cast<int>(k + 1);
+    char mm[32];
+    std::snprintf(mm, sizeof mm, "%s%.3g", tried.empty() ? "" : ", ", gauges[k] * 1e3);
+    tried += mm;
+    if (blocked) break;
+    if (thick.answer.ok) {
+      LoadOutcome& found = thick.answer;
+      found.environment_seconds = found.discovery_seconds = found.composition_seconds = 0;
+      found.fem_calls = 0;
+      add_search_work(found, first);  // every sheet's work, this one's included
+      found.gauges_tried = first.gauges_tried;
+      search = std::move(thick);
+      gauge_env = std::move(sheet);
+      return true;
+    }
+  }
+  if (!tried.empty()) first.reason += " (no valid part at the thicker gauges tried either: " + tried + " mm)";
+  return true;
+}
+
 }  // namespace
 
 GenerateResult generate(const Problem& input, const GenerateOptions& options, GenerateProgress* progress) {
@@ -204,41 +299,42 @@ GenerateResult generate(const Problem& input, const GenerateOptions& options, Ge
   LoadEnvironments environments;
   for (int li = 0; li < static_cast<int>(problem.loads.size()); ++li) {
     const auto load_start = std::chrono::steady_clock::now();
-    LoadOutcome out;
-    out.load = problem.loads[li].name;
+    LoadSearch search;
+    LoadOutcome& first = search.answer;
+    first.load = problem.loads[li].name;
     if (progress) {
       progress->load = li;
       progress->stage = static_cast<int>(Stage::Environment);
     }
     const Environment* env = environments.next(problem, progress);
-    if (env) out.environment_seconds = seconds_since(load_start);
+    if (env) first.environment_seconds = seconds_since(load_start);
     if (!env || cancel_requested(progress)) {
       result.cancelled = true;
       break;
     }
-    out.reason = blocked_load_reason(*env, li, out.load);
-    if (out.reason.empty()) {
-      LoadSearch search = search_load(*env, li, out, options, result.flat_fallback, progress);
-      if (!search.finished || cancel_requested(progress)) {
-        result.cancelled = true;
-        break;
-      }
-      out = std::move(search.answer);
-      if (progress) progress->stage = static_cast<int>(Stage::Plan);
-      const Problem& answer_scene = search.flat_scene ? *search.flat_scene : env->problem();
-      plan_answer(answer_scene, li, out);
-      if (out.ok && !out.part.segments.empty())
-        environments.add_part(part_as_obstacle(out.load, out.realised, env->problem().material.thickness));
-      // Sizing after the part joined the environment as the search left it:
-      // the later loads search around that sheet, so their searches are the
-      // same with and without sizing, and the sized part, which only loses
-      // sheet, stays clear of everything they build (docs/pipeline.md "Sizing").
-      if (out.ok && options.sizing) {
-        search.answer = std::move(out);
-        size_load_answer(*env, li, options, search);
-        out = std::move(search.answer);
-        if (out.sizing_cuts > 0) plan_answer(answer_scene, li, out);
-      }
+    bool blocked = false;
+    std::unique_ptr<Environment> gauge_env;  // the answer's sheet's, when thicker than the problem's
+    bool finished = search_sheet(*env, li, options, result.flat_fallback, progress, search, blocked);
+    // Only a part that exists and is not strong, stiff or stable enough is
+    // helped by thicker sheet: where no candidate was analysed (no way to a
+    // rivet area, nothing the press brake bends) a thicker one fits no better.
+    if (finished && !blocked && !search.answer.ok && search.answer.part.analysed)
+      finished = search_gauges(problem, environments, li, options, result.flat_fallback, progress, search, gauge_env);
+    if (!finished || cancel_requested(progress)) {
+      result.cancelled = true;
+      break;
+    }
+    const Environment& sheet_env = gauge_env ? *gauge_env : *env;
+    LoadOutcome& out = search.answer;
+    if (out.ok && !out.part.segments.empty())
+      environments.add_part(part_as_obstacle(out.load, out.realised, out.thickness));
+    // Sizing after the part joined the environment as the search left it:
+    // the later loads search around that sheet, so their searches are the
+    // same with and without sizing, and the sized part, which only loses
+    // sheet, stays clear of everything they build (docs/pipeline.md "Sizing").
+    if (out.ok && options.sizing) {
+      size_load_answer(sheet_env, li, options, search);
+      if (out.sizing_cuts > 0) plan_answer(search.flat_scene ? *search.flat_scene : sheet_env.problem(), li, out);
     }
     out.total_seconds = seconds_since(load_start);
     result.loads.push_back(std::move(out));

@@ -51,6 +51,7 @@ struct GenerateProgress {
   std::atomic<int> loads{0};          // how many
   std::atomic<bool> web_roots{false}; // the current load's second search (with web roots) is running
   std::atomic<bool> flat_pass{false}; // the current load's third search (with flat extensions) is running
+  std::atomic<int> gauge{0};          // 0: the problem's sheet; k: the current load is searched at its k-th thicker gauge
   DiscoveryProgress discovery;        // iterations / total of the current load
   ComposeProgress compose;            // level, evaluated, best cost
   std::atomic<bool> cancel{false};    // set from any thread; honoured within a second
@@ -93,6 +94,12 @@ struct LoadOutcome {
   double sizing_cost_before = 0, sizing_area_before = 0;
   bool sizing_final_check_failed = false;
   double sizing_seconds = 0;
+  // The sheet the answer is made of, m: the problem's thickness, or the first
+  // of material.gauges that gave the load a valid part when the problem's
+  // sheet gave none (docs/pipeline.md "Thicker gauges"). Mass, drawings, the
+  // flat pattern and the FEM of the part use it.
+  double thickness = 0;
+  int gauges_tried = 0;              // thicker gauges searched (0: the problem's sheet only)
   double environment_seconds = 0, discovery_seconds = 0, composition_seconds = 0, total_seconds = 0;
 };
 

@@ -5,6 +5,7 @@
 #include <stdexcept>
 #include <unistd.h>
 
+#include "sheetgen/core/sheet_gauges.hpp"
 #include "sheetgen/part/exports.hpp"
 #include "sheetgen/pipeline/part_drawing.hpp"
 #include "sheetgen/pipeline/result_json.hpp"
@@ -50,8 +51,10 @@ void write_step_files(const fs::path& folder, const Problem& problem, const Load
   if (!r.part_error.empty()) write_text_file((folder / "part_step_error.txt").u8string(), r.part_error + "\n");
 }
 
-// One load's folder: the drawings and model of a valid part, the history and its plot.
-void write_load_folder(const fs::path& folder, const Problem& problem, const LoadOutcome& o) {
+// One load's folder: the drawings and model of a valid part, the history and
+// its plot; the part's in the sheet it is made of.
+void write_load_folder(const fs::path& folder, const Problem& scene, const LoadOutcome& o) {
+  const Problem problem = problem_at_sheet(scene, o.thickness);
   fs::create_directories(folder);
   if (o.ok) write_manufacturing_files(folder.u8string(), o.realised, o.plan);
   if (o.ok) write_part_drawing(load_result_json(problem, o), problem, (folder / "drawing.pdf").u8string());

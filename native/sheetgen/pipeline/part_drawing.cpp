@@ -5,6 +5,7 @@
 #include <limits>
 
 #include "sheetgen/core/input_error.hpp"
+#include "sheetgen/core/sheet_gauges.hpp"
 
 namespace sheetgen {
 namespace {
@@ -167,8 +168,10 @@ std::string problem_label(const std::string& source) {
   return folder.empty() ? p.filename().u8string() : (folder / p.filename()).u8string();
 }
 
-DrawingSheetPart drawing_sheet_part(const json& e, const Problem& problem) {
+DrawingSheetPart drawing_sheet_part(const json& e, const Problem& scene) {
   try {
+    // The sheet the part is made of: a thicker gauge when the problem's gave none (docs/pipeline.md).
+    const Problem problem = problem_at_sheet(scene, e.contains("thickness_m") ? number(e, "thickness_m", "part") : 0.0);
     DrawingSheetPart d;
     d.part_name = need(e, "load", "part").get<std::string>();
     d.problem_name = problem_label(problem.source);

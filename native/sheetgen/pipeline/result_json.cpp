@@ -2,6 +2,7 @@
 
 #include <cmath>
 
+#include "sheetgen/core/sheet_gauges.hpp"
 #include "sheetgen/part/exports.hpp"
 
 namespace sheetgen {
@@ -117,14 +118,17 @@ void add_search_fields(json& p, const LoadOutcome& o) {
                  {"composition_s", o.composition_seconds}, {"sizing_s", o.sizing_seconds}, {"total_s", o.total_seconds}};
 }
 
-// One entry of parts[].
+// One entry of parts[]: the part's fields in the sheet it is made of.
 json load_entry(const Problem& problem, const LoadOutcome& o) {
   json p;
   p["load"] = o.load;
   p["status"] = o.ok ? "ok" : "no_valid_part";
   if (!o.ok) p["reason"] = o.reason;
   p["segments"] = o.part.segments;
-  if (!o.part.segments.empty()) add_part_fields(p, problem, o);
+  const Problem sheet = problem_at_sheet(problem, o.thickness);
+  p["thickness_m"] = sheet.material.thickness;
+  p["gauges_tried"] = o.gauges_tried;
+  if (!o.part.segments.empty()) add_part_fields(p, sheet, o);
   add_search_fields(p, o);
   return p;
 }

@@ -36,6 +36,26 @@ TEST(ResultJson, APartCarriesItsMassTabsAndFlatPattern) {
   EXPECT_FALSE(part.contains("compliance"));      // not analysed: no FEM numbers
 }
 
+// A part found in a thicker gauge (docs/pipeline.md "Thicker gauges") is
+// written in that sheet: its thickness, its mass and the sheet's share of its cost.
+TEST(ResultJson, APartInAThickerGaugeIsWrittenInItsSheet) {
+  const Problem p = test::two_load_corner();
+  GenerateResult r = test::hand_made_result(p);
+  const double t = 0.071 * 0.0254;
+  r.loads[0].thickness = t;
+  r.loads[0].gauges_tried = 1;
+  const nlohmann::json doc = result_json(p, r, "");
+  const nlohmann::json& part = doc["parts"][0];
+  EXPECT_DOUBLE_EQ(part["thickness_m"].get<double>(), t);
+  EXPECT_EQ(part["gauges_tried"], 1);
+  EXPECT_DOUBLE_EQ(part["mass_kg"].get<double>(), 0.01 * t * p.material.density);
+  // 15 USD/kg of sheet (docs/cost.md).
+  EXPECT_NEAR(part["cost"]["material"].get<double>(), 15.0 * 0.01 * t * p.material.density, 1e-12);
+  // The load without a part, and any part of the problem's own sheet, say that sheet.
+  EXPECT_DOUBLE_EQ(doc["parts"][1]["thickness_m"].get<double>(), p.material.thickness);
+  EXPECT_EQ(doc["parts"][1]["gauges_tried"], 0);
+}
+
 TEST(ResultJson, ALoadWithoutAPartSaysWhyAndKeepsItsHistory) {
   const Problem p = test::two_load_corner();
   const nlohmann::json none = result_json(p, test::hand_made_result(p), "")["parts"][1];
