@@ -80,10 +80,49 @@ def one_load_problem(doc, problem_dir, load, thickness, obstacles, path, base_ro
     q["environment"]["meshes"] += obstacles
     q["loads"] = [load]
     q.setdefault("material", {})["thickness"] = thickness
+    q["material"]["gauges"] = []  # the caller tries the gauges itself
     q["description"] = (f"{doc.get('name', '')}: load {load['name']} alone at {thickness * 1e3:.3f} mm sheet, "
                         f"right angles, the other parts as obstacles (bench/gauge_baseline.py)")
     with open(path, "w") as f:
         json.dump(q, f)
+
+
+# --- Sheet gauges (docs/problem-format.md "material"), read from the file.
+
+INCH = 0.0254  # m
+# AMS-QQ-A-250/4, 2024-T3 clad sheet, 0.016 to 0.160 in: material.gauges' default
+# is those thicker than material.thickness.
+STANDARD_GAUGES_IN = (0.016, 0.020, 0.025, 0.032, 0.040, 0.050, 0.063, 0.071, 0.080, 0.090, 0.100, 0.125, 0.160)
+DEFAULT_THICKNESS = 1.6e-3  # m
+
+
+def sheets(prob):
+    """The sheets a part of the problem may be made of, m: material.thickness,
+    then material.gauges (default: the standard gauges thicker than it)."""
+    material = prob.get("material", {})
+    t = material.get("thickness", DEFAULT_THICKNESS)
+    gauges = material.get("gauges")
+    if gauges is None:
+        gauges = [g * INCH for g in STANDARD_GAUGES_IN if g * INCH > t + 1e-6]
+    return [t] + list(gauges)
+
+
+def at_part_sheet(prob, part):
+    """The problem as the part's checks need it: material.thickness the part's
+    own (result.json's thickness_m, a thicker gauge when the problem's sheet
+    gave the load none). Every length the checks derive from the thickness
+    follows it. ValueError when the part names a sheet the problem does not
+    allow."""
+    t = part.get("thickness_m")
+    allowed = sheets(prob)
+    if t is None or abs(t - allowed[0]) <= 1e-12:
+        return prob
+    if not any(abs(t - g) <= 1e-9 for g in allowed[1:]):
+        raise ValueError(f"{part['load']}: thickness_m {t} m is neither material.thickness nor one of its gauges "
+                         f"({', '.join(f'{g * 1e3:.4g}' for g in allowed)} mm)")
+    q = copy.copy(prob)
+    q["material"] = {**prob.get("material", {}), "thickness": t}
+    return q
 
 
 # --- Load cases and requirements (docs/problem-format.md "Load cases"), read

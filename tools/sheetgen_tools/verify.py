@@ -40,7 +40,7 @@ from .cost_check import check_cost
 from .dxf_check import check_holes, check_outline
 from .findings import Findings
 from .geometry import part_faces
-from .problem import load_problem, problem_of_result
+from .problem import DEFAULT_THICKNESS, at_part_sheet, load_problem, problem_of_result
 
 # The last line of the report; solve_all.py's table reads it back from verify.log
 # (the name is the checker's old one, which saved logs carry).
@@ -79,13 +79,27 @@ class VerifyReport:
 
 
 def check_part(out_dir, prob, meshes, part, options, findings):
-    """Every check of one part with a valid design."""
+    """Every check of one part with a valid design, in the sheet it is made of
+    (a thicker gauge when the problem's sheet gave the load none)."""
+    try:
+        prob = at_part_sheet(prob, part)
+    except ValueError as e:
+        findings.fail(str(e))
+        return
     check_clearance(prob, meshes, part, findings)
     if options.calculix:
         check_calculix(out_dir, prob, part, options.sheetgen, findings)
     doc = check_outline(out_dir, part, findings)
     check_holes(out_dir, prob, part, findings, doc)
     check_cost(out_dir, prob, part, findings, doc)
+
+
+def _sheet_thickness(prob, part):
+    """The part's sheet, m, as an obstacle for the parts after it."""
+    try:
+        return at_part_sheet(prob, part)["material"].get("thickness", DEFAULT_THICKNESS)
+    except ValueError:
+        return part["thickness_m"]  # check_part has failed it; as an obstacle it is what it says
 
 
 def verify_output(out_dir, options=None):
@@ -95,7 +109,6 @@ def verify_output(out_dir, options=None):
     with open(os.path.join(out_dir, "result.json")) as f:
         result = json.load(f)
     prob, meshes = load_problem(problem_of_result(out_dir, result))
-    t = prob.get("material", {}).get("thickness", 1.6e-3)
     unknown = sorted(set(options.loads or ()) - {p["load"] for p in result["parts"]})
     if unknown:
         raise ValueError(f"loads {unknown} are not in {out_dir}/result.json")
@@ -113,7 +126,7 @@ def verify_output(out_dir, options=None):
             else:
                 check_part(out_dir, prob, {**meshes, **earlier}, part, options, findings)
         if part["status"] == "ok":
-            earlier["part:" + part["load"]] = part_faces(part, t)
+            earlier["part:" + part["load"]] = part_faces(part, _sheet_thickness(prob, part))
     return VerifyReport(findings, checked)
 
 
