@@ -115,7 +115,7 @@ class Run:
         """The progress counters read once (the worker moves them between reads): one snapshot gives the bar's
         percentage and the status line the same iteration."""
         p = self.progress
-        names = ("stage", "load", "loads", "iterations", "total_iterations", "evaluated", "best_cost_m2")
+        names = ("stage", "load", "loads", "iterations", "total_iterations", "evaluated", "best_cost_m2", "gauge")
         return types.SimpleNamespace(**{n: getattr(p, n) for n in names})
 
     def fraction(self, snap=None):
@@ -137,8 +137,10 @@ class Run:
             work = "%d candidates evaluated" % p.evaluated
         else:
             work = "iteration %d/%d" % (p.iterations, p.total_iterations)
+        # A load the problem's sheet gave no part is searched again in thicker gauges (docs/pipeline.md).
+        stage = p.stage + (" (thicker gauge %d)" % p.gauge if getattr(p, "gauge", 0) else "")
         return ("sheetgen: load %d/%d, %s, %s, %s, %.0f s — Esc cancels"
-                % (min(p.load + 1, max(p.loads, 1)), max(p.loads, 1), p.stage, work, best,
+                % (min(p.load + 1, max(p.loads, 1)), max(p.loads, 1), stage, work, best,
                    time.monotonic() - self.started))
 
     def outputs(self):
@@ -467,6 +469,8 @@ class SHEETGEN_OT_show_modes(bpy.types.Operator):
         except (KeyError, TypeError, ValueError):
             from .core import model
             thickness = model.Material().thickness
+        part = next((p for p in doc.get("parts", []) if p.get("load") == self.load), {})
+        thickness = core_result.part_sheet(part, thickness)
         obj = results.build_modes(col, self.load, plain, thickness)
         if not plain.keys:
             self.report({'WARNING'}, "%s: no mode moves the sheet (%s)" % (self.load, plain.summary))

@@ -231,6 +231,10 @@ class SHEETGEN_PT_material(_Panel, bpy.types.Panel):
         for key in ("youngs_modulus_gpa", "poisson_ratio", "density", "yield_strength_mpa", "ultimate_strength_mpa",
                     "thickness_mm"):
             col.prop(p, key)
+        col.prop(p, "thicker_gauges")
+        row = col.row()
+        row.enabled = p.thicker_gauges
+        row.prop(p, "gauges_mm")
 
 
 class SHEETGEN_PT_requirements(_Panel, bpy.types.Panel):

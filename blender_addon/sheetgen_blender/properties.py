@@ -120,6 +120,12 @@ class SheetgenSceneSettings(bpy.types.PropertyGroup):
                                          precision=1, description="Ultimate strength, MPa")
     thickness_mm: FloatProperty(name="Thickness (mm)", default=_M.thickness * 1e3, min=1e-6, precision=3,
                                 description="Sheet thickness, mm")
+    thicker_gauges: BoolProperty(name="Thicker gauges", default=True,
+                                 description="Where the sheet gives a load no valid part, search it again in each "
+                                             "thicker gauge in turn and keep the first part found")
+    gauges_mm: StringProperty(name="Gauges (mm)", default="",
+                              description="The thicker sheets the shop stocks, mm, comma-separated, thinnest first; "
+                                          "empty: the standard 2024-T3 gauges up to 0.160 in")
     # requirements
     stiffness_limit: EnumProperty(name="Stiffness", default='DEFLECTION', items=[
         ('DEFLECTION', "Max deflection", "Limit the deflection at the load point (C_max = |F|·δ_max)"),

@@ -144,7 +144,7 @@ def build_run(context, doc, files, thickness):
         if pm.bent is None:
             continue
         bent = _object("%s part" % pm.load, mesh_from_plain("%s part" % pm.load, pm.bent), col, metal, run, pm.load)
-        _solidify(bent, thickness)
+        _solidify(bent, pm.thickness)
         if pm.rivets.vertices:
             _object("%s rivets" % pm.load, mesh_from_plain("%s rivets" % pm.load, pm.rivets), col, red, run, pm.load)
         if pm.self_rivets.vertices:
@@ -152,16 +152,16 @@ def build_run(context, doc, files, thickness):
                     run, pm.load)
         flat = _object("%s flat" % pm.load, mesh_from_plain("%s flat" % pm.load, pm.flat), col, flat_mat, run,
                        pm.load)
-        _solidify(flat, thickness)
+        _solidify(flat, pm.thickness)
         xs = [v[0] for v in pm.flat.vertices]
         ys = [v[1] for v in pm.flat.vertices]
         # Beside the scene on its floor level, flat patterns of several loads one after another along y.
-        flat.location = (x0 - min(xs), y0 - min(ys), z0 + thickness / 2)
+        flat.location = (x0 - min(xs), y0 - min(ys), z0 + pm.thickness / 2)
         if pm.holes.vertices:
             # On the flat's top face, a hair above it so the discs do not z-fight with it.
             holes = _object("%s flat holes" % pm.load, mesh_from_plain("%s flat holes" % pm.load, pm.holes), col, red,
                             run, pm.load)
-            holes.location = (flat.location[0], flat.location[1], flat.location[2] + thickness / 2 + 1e-4)
+            holes.location = (flat.location[0], flat.location[1], flat.location[2] + pm.thickness / 2 + 1e-4)
         y0 += (max(ys) - min(ys)) + FLAT_GAP
     scene.sheetgen.result_collection = col
     return col

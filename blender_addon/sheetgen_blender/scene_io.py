@@ -15,6 +15,7 @@ from mathutils import Quaternion, Vector
 
 from . import loads, tagging
 from .core import model
+from .core import problem as core_problem
 from .core.geometry import rivet_area_areas, shortest_float32, shortest_float32_list
 from .core.model import Envelope, FactorData, LoadCaseData, LoadData, MeshData, SceneData, Settings
 
@@ -167,7 +168,8 @@ def read_settings(scene):
     s.material = model.Material(youngs_modulus=_si(p.youngs_modulus_gpa, 1e9), poisson_ratio=_si(p.poisson_ratio, 1),
                                 density=_si(p.density, 1), yield_strength=_si(p.yield_strength_mpa, 1e6),
                                 ultimate_strength=_si(p.ultimate_strength_mpa, 1e6),
-                                thickness=_si(p.thickness_mm, 1e-3))
+                                thickness=_si(p.thickness_mm, 1e-3),
+                                gauges=core_problem.gauges_from_mm_text(p.thicker_gauges, p.gauges_mm))
     r = model.Requirements(min_margin_of_safety=_si(p.min_margin_of_safety, 1), safety_factor=_si(p.safety_factor, 1),
                            clearance=_si(p.clearance_mm, 1e-3),
                            min_buckling_factor=_si(p.min_buckling_factor, 1) if p.use_min_buckling_factor else None,
@@ -217,6 +219,7 @@ def write_settings(scene, s):
     p.yield_strength_mpa = m.yield_strength / 1e6
     p.ultimate_strength_mpa = m.ultimate_strength / 1e6
     p.thickness_mm = m.thickness * 1e3
+    p.thicker_gauges, p.gauges_mm = core_problem.gauges_to_mm_text(m.gauges)
     r = s.requirements
     if r.max_compliance is not None:
         p.stiffness_limit = 'COMPLIANCE'

@@ -74,6 +74,34 @@ class SceneToProblem(unittest.TestCase):
         again, _ = scene_to_problem(scene)
         self.assertEqual(again, problem)
 
+    def test_gauges_round_trip_and_bad_ones_name_the_field(self):
+        from sheetgen_blender.core import problem as P
+        s = two_meshes()
+        problem, _ = scene_to_problem(s)
+        self.assertNotIn("gauges", problem["material"])     # None: the format's default ladder
+        s.settings.material.gauges = []
+        self.assertEqual(scene_to_problem(s)[0]["material"]["gauges"], [])
+        s.settings.material.gauges = [1.8034e-3, 2.032e-3]
+        problem, _ = scene_to_problem(s)
+        self.assertEqual(problem["material"]["gauges"], [1.8034e-3, 2.032e-3])
+        scene, _ = problem_to_scene(json.loads(jsonio.dumps(problem)))
+        self.assertEqual(scene.settings.material.gauges, [1.8034e-3, 2.032e-3])
+        # The panel's text in mm, and back.
+        self.assertEqual(P.gauges_to_mm_text([1.8034e-3, 2.032e-3]), (True, "1.8034, 2.032"))
+        self.assertEqual(P.gauges_to_mm_text(None), (True, ""))
+        self.assertEqual(P.gauges_to_mm_text([]), (False, ""))
+        self.assertEqual(P.gauges_from_mm_text(True, "1.8034, 2.032"), [1.8034e-3, 2.032e-3])
+        self.assertIsNone(P.gauges_from_mm_text(True, " "))
+        self.assertEqual(P.gauges_from_mm_text(False, "3"), [])
+        for gauges, message in [
+                ([1.2e-3], "material.gauges[0]: 0.0012 m must be thicker than material.thickness (0.0016 m)"),
+                ([2e-3, 1.8e-3], "material.gauges[1]: 0.0018 m must be thicker than the gauge before it (0.002 m)"),
+                (P.gauges_from_mm_text(True, "2, two"), "material.gauges: expected a list of thicknesses (m), got '2, two'")]:
+            s.settings.material.gauges = gauges
+            with self.assertRaises(ProblemError) as ctx:
+                scene_to_problem(s)
+            self.assertTrue(any(e.startswith(message) for e in ctx.exception.errors), ctx.exception.errors)
+
     def test_defaults_match_problem_format_doc(self):
         with open(os.path.join(ROOT, "docs", "problem-format.md"), encoding="utf-8") as f:
             doc = f.read()

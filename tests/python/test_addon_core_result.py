@@ -125,6 +125,19 @@ class Document(unittest.TestCase):
         r = max(1.5 * T, 0.002)
         self.assertEqual(pms[0].rivets.vertices[0], (0.05 + r, 0.05, 0.2))
 
+    def test_a_part_in_a_thicker_gauge_is_drawn_in_its_own_sheet(self):
+        thick = bracket()
+        thick["thickness_m"], thick["gauges_tried"] = 2.032e-3, 2
+        plain = bracket()
+        plain["load"] = "plain"
+        pms = R.part_meshes(doc(thick, plain), T)
+        self.assertEqual([p.thickness for p in pms], [2.032e-3, T])  # the other keeps the problem's sheet
+        r = max(1.5 * 2.032e-3, 0.002)
+        self.assertEqual(pms[0].rivets.vertices[0], (0.05 + r, 0.05, 0.2))
+        self.assertEqual(dict(R.report_rows(thick))["Sheet (mm)"], "2.03")
+        self.assertEqual(R.status_line(thick), "box: 140.0 cm², 1 bends, MS 1.25, 2.03 mm sheet (thicker gauge)")
+        self.assertEqual(R.status_line(plain), "plain: 140.0 cm², 1 bends, MS 1.25")
+
     def test_self_rivets_and_holes(self):
         part = bracket()
         # One self-rivet whose two sheet points are 1.6 mm apart; its holes and a flange rivet's in the flat.

@@ -66,6 +66,10 @@ class Material:
     yield_strength: float = 345e6       # Pa, Fty
     ultimate_strength: float = 483e6    # Pa, Ftu
     thickness: float = 1.6e-3           # m (0.063 in)
+    # Thicker sheets tried, m, thinnest first, where `thickness` gives a load no
+    # part; None: the format's default (the standard 2024-T3 gauges above
+    # `thickness`); []: the problem's sheet only.
+    gauges: Optional[List[float]] = None
 
 
 @dataclass

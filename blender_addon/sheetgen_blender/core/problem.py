@@ -340,6 +340,46 @@ def _check_number(value, kind: str, where: str, errors: List[str]) -> None:
         errors.append("%s: must lie in (-1, 0.5), got %g" % (where, value))
 
 
+def _check_gauges(gauges, thickness, where: str, errors: List[str]) -> None:
+    """material.gauges: a list of numbers (m), thinnest first, each thicker than the sheet."""
+    if not isinstance(gauges, (list, tuple)):
+        errors.append("%s: expected a list of thicknesses (m), got %r" % (where, gauges))
+        return
+    last = thickness
+    for k, g in enumerate(gauges):
+        before = len(errors)
+        _check_number(g, "pos", "%s[%d]" % (where, k), errors)
+        if len(errors) > before:
+            return
+        if isinstance(thickness, (int, float)) and g <= last:
+            errors.append("%s[%d]: %g m must be thicker than %s (%g m): the gauges are thicker sheets, thinnest first"
+                          % (where, k, g, "material.thickness" if k == 0 else "the gauge before it", last))
+            return
+        last = g
+
+
+def gauges_from_mm_text(use: bool, text: str):
+    """The Material panel's thicker gauges as material.gauges (m): None (the
+    standard gauges) for an empty list, [] when they are off. Text that is not
+    a comma-separated list of numbers (mm) is returned as it is, for
+    settings_to_json to report."""
+    if not use:
+        return []
+    if not text.strip():
+        return None
+    try:
+        return [float(v) * 1e-3 for v in text.replace(";", ",").split(",") if v.strip()]
+    except ValueError:
+        return text
+
+
+def gauges_to_mm_text(gauges) -> Tuple[bool, str]:
+    """The inverse of gauges_from_mm_text: (use, text in mm)."""
+    if gauges is None:
+        return True, ""
+    return bool(gauges), ", ".join("%.12g" % (g * 1e3) for g in gauges)
+
+
 def settings_to_json(s: Settings, errors: List[str]) -> dict:
     """The material, requirements, manufacturing and search sections; checks go to ``errors``."""
     mat = {}
@@ -347,6 +387,9 @@ def settings_to_json(s: Settings, errors: List[str]) -> dict:
         v = getattr(s.material, key)
         _check_number(v, kind, "material.%s (%s)" % (key, label), errors)
         mat[key] = float(v)
+    if s.material.gauges is not None:
+        _check_gauges(s.material.gauges, s.material.thickness, "material.gauges", errors)
+        mat["gauges"] = [float(g) for g in s.material.gauges] if isinstance(s.material.gauges, (list, tuple)) else []
     r = s.requirements
     req = {}
     if (r.max_deflection is None) == (r.max_compliance is None):
@@ -715,13 +758,18 @@ def settings_from_json(problem: dict, err: _Errors) -> Settings:
     s = Settings()
     mat = problem.get("material", {})
     if _obj(mat, "material", err):
-        _unknown(mat, ("name",) + tuple(k for k, _, _ in model.MATERIAL_FIELDS), "material", err)
+        _unknown(mat, ("name",) + tuple(k for k, _, _ in model.MATERIAL_FIELDS) + ("gauges",), "material", err)
         for key, label, kind in model.MATERIAL_FIELDS:
             if key in mat:
                 before = len(err.items)
                 _check_number(mat[key], kind, "material." + key, err.items)
                 if len(err.items) == before:
                     setattr(s.material, key, float(mat[key]))
+        if "gauges" in mat:
+            before = len(err.items)
+            _check_gauges(mat["gauges"], s.material.thickness, "material.gauges", err.items)
+            if len(err.items) == before:
+                s.material.gauges = [float(g) for g in mat["gauges"]]
     req = problem.get("requirements", {})
     if _obj(req, "requirements", err):
         _unknown(req, ("max_compliance", "max_deflection") + tuple(k for k, _, _ in model.REQUIREMENT_FIELDS) +

@@ -297,17 +297,27 @@ def check_document(doc):
         raise ResultError("parts: missing or not a list")
 
 
+def part_sheet(part, thickness):
+    """The sheet a part is made of, m: its thickness_m (a thicker gauge when the
+    problem's sheet gave the load no part), else the problem's `thickness`."""
+    t = part.get("thickness_m")
+    return float(t) if isinstance(t, (int, float)) and t > 0 else thickness
+
+
 def part_meshes(doc, thickness, rivet_radius=None):
-    """PartMeshes per part of a result document; parts without a valid part carry only status/reason."""
+    """PartMeshes per part of a result document, each in its own sheet
+    (part_sheet; `thickness` is the problem's); parts without a valid part carry
+    only status/reason."""
     check_document(doc)
     out = []
-    r = rivet_radius if rivet_radius is not None else max(1.5 * thickness, 0.002)
     for part in doc["parts"]:
+        t = part_sheet(part, thickness)
+        r = rivet_radius if rivet_radius is not None else max(1.5 * t, 0.002)
         pm = PartMeshes(load=part.get("load", "?"), status=part.get("status", "?"), reason=part.get("reason", ""),
-                        thickness=thickness)
+                        thickness=t)
         if pm.status == "ok" and part.get("tabs"):
             pm.bent = bent_mesh(part)
-            pm.flat = flat_mesh(part, snap=max(SNAP_THICKNESSES * thickness, ON_EDGE_TOL))
+            pm.flat = flat_mesh(part, snap=max(SNAP_THICKNESSES * t, ON_EDGE_TOL))
             pm.rivets = rivet_markers(part.get("rivets", []), r)
             pm.self_rivets = rivet_markers(self_rivet_centres(part), r)
             pm.holes = hole_discs(part)
@@ -319,6 +329,7 @@ def part_meshes(doc, thickness, rivet_radius=None):
 REPORT_FIELDS = [
     ("area_m2", "Area (cm²)", 1e4, "%.1f"),
     ("mass_kg", "Mass (g)", 1e3, "%.1f"),
+    ("thickness_m", "Sheet (mm)", 1e3, "%.3g"),
     ("bends", "Bends", 1, "%d"),
     ("compliance", "Compliance (J)", 1, "%.4g"),
     ("compliance_limit", "Limit (J)", 1, "%.4g"),
@@ -377,8 +388,11 @@ def press_brake_text(part):
 
 def status_line(part):
     if part.get("status") == "ok":
-        return "%s: %.1f cm², %d bends, MS %.2f" % (part.get("load"), part.get("area_m2", 0) * 1e4,
+        line = "%s: %.1f cm², %d bends, MS %.2f" % (part.get("load"), part.get("area_m2", 0) * 1e4,
                                                  part.get("bends", 0), part.get("margin_of_safety", 0))
+        if part.get("gauges_tried"):  # its own sheet gave no part: say which one it is made of
+            line += ", %.3g mm sheet (thicker gauge)" % (part_sheet(part, 0.0) * 1e3)
+        return line
     return "%s: no valid part (%s)" % (part.get("load"), part.get("reason") or part.get("status"))
 
 
