@@ -97,7 +97,7 @@ def check_part(out_dir, prob, meshes, part, options, findings):
 def _sheet_thickness(prob, part):
     """The part's sheet, m, as an obstacle for the parts after it."""
     try:
-        return at_part_sheet(prob, part)["material"].get("thickness", DEFAULT_THICKNESS)
+        return at_part_sheet(prob, part).get("material", {}).get("thickness", DEFAULT_THICKNESS)
     except ValueError:
         return part["thickness_m"]  # check_part has failed it; as an obstacle it is what it says
 
