@@ -125,7 +125,8 @@ class SheetgenSceneSettings(bpy.types.PropertyGroup):
                                              "thicker gauge in turn and keep the first part found")
     gauges_mm: StringProperty(name="Gauges (mm)", default="",
                               description="The thicker sheets the shop stocks, mm, comma-separated, thinnest first; "
-                                          "empty: the standard 2024-T3 gauges up to 0.160 in")
+                                          "empty: the format's default, the standard 2024-T3 gauges up to 0.160 in "
+                                          "for loads with a mass or cases, none for loads with one force")
     # requirements
     stiffness_limit: EnumProperty(name="Stiffness", default='DEFLECTION', items=[
         ('DEFLECTION', "Max deflection", "Limit the deflection at the load point (C_max = |F|·δ_max)"),

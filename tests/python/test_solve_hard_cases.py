@@ -98,8 +98,6 @@ class HardCases(unittest.TestCase):
         # round of them (42 s of this test's 56; test_press_brake_use.py checks that round).
         prob = floor_and_wall(requirements={"max_deflection": 1e-6})
         prob["manufacturing"] = {"press_brake": "require"}
-        # No thicker gauges either (test_gauges_cli.py checks them): six more rounds of the passes.
-        prob["material"] = {"gauges": []}
         p, result, _ = solve(prob)
         self.assertEqual(p.exit_code, 2, p.stdout + p.stderr)
         reason = result["parts"][0]["reason"]

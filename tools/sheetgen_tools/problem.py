@@ -98,12 +98,14 @@ DEFAULT_THICKNESS = 1.6e-3  # m
 
 def sheets(prob):
     """The sheets a part of the problem may be made of, m: material.thickness,
-    then material.gauges (default: the standard gauges thicker than it)."""
+    then material.gauges (default: for a file in the envelope format, the
+    standard gauges thicker than it; none for a one-force file)."""
     material = prob.get("material", {})
     t = material.get("thickness", DEFAULT_THICKNESS)
     gauges = material.get("gauges")
     if gauges is None:
-        gauges = [g * INCH for g in STANDARD_GAUGES_IN if g * INCH > t + 1e-6]
+        envelope = eigen_requirements(prob).checked  # the reader's rule for the envelope format
+        gauges = [g * INCH for g in STANDARD_GAUGES_IN if g * INCH > t + 1e-6] if envelope else []
     return [t] + list(gauges)
 
 

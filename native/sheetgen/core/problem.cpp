@@ -376,15 +376,12 @@ void parse_requirements(const JsonNode& root, Requirements& req) {
   if (auto f = r->find("min_frequency_hz")) req.min_frequency_hz = f->as_positive();
 }
 
-// material.gauges (m): ascending, each thicker than material.thickness;
-// absent: the standard gauges above it (core/sheet_gauges.hpp).
+// material.gauges (m), when the file gives them: ascending, each thicker
+// than material.thickness. The default is parse_problem's.
 void parse_gauges(const JsonNode& root, Material& mat) {
   std::optional<JsonNode> m = root.find("material");
   std::optional<JsonNode> g = m ? m->find("gauges") : std::nullopt;
-  if (!g) {
-    mat.gauges = default_gauges(mat.thickness);
-    return;
-  }
+  if (!g) return;
   g->expect_array();
   mat.gauges.clear();
   for (size_t k = 0; k < g->size(); ++k) {
@@ -583,6 +580,12 @@ Problem parse_problem(const std::string& json_text, const std::string& source, c
   check_envelope_used(root, p);
   check_scale(root, p);
   p.requirements.eigen_checks = uses_envelope(root);
+  // Gauges not given: the standard ones above the sheet for a file in the
+  // envelope format; none for a file with one force per load, which solves
+  // as it was written for, in its own sheet (docs/problem-format.md).
+  const std::optional<JsonNode> material = root.find("material");
+  if (!(material && material->has("gauges")))
+    p.material.gauges = p.requirements.eigen_checks ? default_gauges(p.material.thickness) : std::vector<double>{};
   return p;
 }
 

@@ -70,7 +70,8 @@ struct Material {  // Al 2024-T3 sheet by default (docs/architecture.md "Units a
   // Thicker sheets the shop stocks, m, ascending, each above `thickness`: a
   // load with no valid part at `thickness` is searched again at each in turn
   // (core/sheet_gauges.hpp). The reader's default is the standard 2024-T3
-  // gauges above `thickness`; empty: the problem's sheet only.
+  // gauges above `thickness` for a file in the envelope format, none for one
+  // with one force per load (it solves as written); empty: the problem's sheet only.
   std::vector<double> gauges;
 };
 

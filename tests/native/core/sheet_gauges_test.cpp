@@ -27,8 +27,17 @@ json problem_json() {
   })");
 }
 
+// A load in the envelope format (a mass and the FAR 25.561 factors).
+json envelope_json() {
+  json j = problem_json();
+  j["loads"][0].erase("force");
+  j["loads"][0]["mass"] = 2.0;
+  j["load_cases"] = {{"forward", {1, 0, 0}}, {"up", {0, 0, 1}}, {"factors", "far25.561"}};
+  return j;
+}
+
 TEST(SheetGauges, TheDefaultLadderIsTheStandardGaugesAboveTheSheet) {
-  const Problem p = parse(problem_json());
+  const Problem p = parse(envelope_json());
   // 0.063 in (1.6 mm) sheet: 0.071, 0.080, 0.090, 0.100, 0.125 and 0.160 in.
   const std::vector<double> inches = {0.071, 0.080, 0.090, 0.100, 0.125, 0.160};
   ASSERT_EQ(p.material.gauges.size(), inches.size());
@@ -37,7 +46,9 @@ TEST(SheetGauges, TheDefaultLadderIsTheStandardGaugesAboveTheSheet) {
   EXPECT_TRUE(default_gauges(0.160 * kInch).empty());
   ASSERT_FALSE(default_gauges(2.2e-3).empty());
   EXPECT_DOUBLE_EQ(default_gauges(2.2e-3).front(), 0.090 * kInch);
-  // Listed gauges replace the ladder; an empty list turns it off.
+  // A file with one force per load solves as it was written for: in its own sheet.
+  EXPECT_TRUE(parse(problem_json()).material.gauges.empty());
+  // Listed gauges replace the ladder, in either format; an empty list turns it off.
   json j = problem_json();
   j["material"]["gauges"] = {0.002, 0.003};
   EXPECT_EQ(parse(j).material.gauges, (std::vector<double>{0.002, 0.003}));
