@@ -47,8 +47,10 @@ def part_rows(result):
     for p in result["parts"]:
         ok = p["status"] == "ok"
         t = p.get("timing", {})
+        # A part in a thicker gauge than the problem's (docs/pipeline.md "Thicker gauges") says its sheet.
+        status = p["status"] + (" (%.2f mm sheet)" % (p["thickness_m"] * 1e3) if ok and p.get("gauges_tried") else "")
         lines.append("| %s | %s | %s | %s | %s | %s | %s | %s | %s | %s | %s | %s (%s) | %s | %s |" % (
-            p["load"], p["status"], fmt(p.get("area_m2") if ok else None, ".1f", 1e4),
+            p["load"], status, fmt(p.get("area_m2") if ok else None, ".1f", 1e4),
             fmt(p.get("mass_kg") if ok else None, ".0f", 1e3), p["bends"] if ok else "–",
             cost_text(p) if ok else "–",
             fmt(p.get("compliance") if ok else None, ".4f"), fmt(p.get("compliance_limit"), ".4f"),
