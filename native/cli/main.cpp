@@ -320,7 +320,8 @@ int export_ccx(const ExportCcxArgs& a) {
   const nlohmann::json* t = part.contains("thickness_m") ? &part["thickness_m"] : nullptr;
   if (t && !(t->is_number() && t->get<double>() > 0))
     throw sheetgen::InputError(a.result, "parts[load=" + a.load + "].thickness_m", "must be a positive number (m)");
-  const sheetgen::Problem problem = sheetgen::problem_at_sheet(scene, t ? t->get<double>() : 0.0);
+  std::optional<sheetgen::Problem> thicker;
+  const sheetgen::Problem& problem = sheetgen::problem_at_sheet(scene, t ? t->get<double>() : 0.0, thicker);
   const sheetgen::PlateGeometry geometry = sheetgen::plate_geometry_from_json(part.dump(), a.result);
   sheetgen::PartModelOptions model_options;
   model_options.element_size = a.element_size_mm * 1e-3;

@@ -48,9 +48,10 @@ Problem at_gauge(const Problem& problem, double thickness) {
   return p;
 }
 
-Problem problem_at_sheet(const Problem& problem, double thickness) {
+const Problem& problem_at_sheet(const Problem& problem, double thickness, std::optional<Problem>& storage) {
   if (!(thickness > 0) || std::abs(thickness - problem.material.thickness) <= 1e-12) return problem;
-  return at_gauge(problem, thickness);
+  storage = at_gauge(problem, thickness);
+  return *storage;
 }
 
 }  // namespace sheetgen

@@ -5,6 +5,7 @@
 // next gauge the shop stocks; this is that step, with the search redone at
 // each gauge, because every clearance, bend radius and flange length grows
 // with the thickness.
+#include <optional>
 #include <vector>
 
 #include "sheetgen/core/problem.hpp"
@@ -31,8 +32,9 @@ Problem at_gauge(const Problem& problem, double thickness);
 
 // `problem` at the sheet a part is made of (a LoadOutcome's thickness,
 // result.json's thickness_m): the problem itself when that is its own sheet
-// or unknown (<= 0), else at_gauge. So a problem built in code, whose
+// or unknown (<= 0), else at_gauge, kept in `storage`. No copy in the common
+// case (a scene's meshes may be large), and a problem built in code, whose
 // thickness-scaled lengths were set by hand, keeps them.
-Problem problem_at_sheet(const Problem& problem, double thickness);
+const Problem& problem_at_sheet(const Problem& problem, double thickness, std::optional<Problem>& storage);
 
 }  // namespace sheetgen

@@ -54,7 +54,8 @@ void write_step_files(const fs::path& folder, const Problem& problem, const Load
 // One load's folder: the drawings and model of a valid part, the history and
 // its plot; the part's in the sheet it is made of.
 void write_load_folder(const fs::path& folder, const Problem& scene, const LoadOutcome& o) {
-  const Problem problem = problem_at_sheet(scene, o.thickness);
+  std::optional<Problem> thicker;
+  const Problem& problem = problem_at_sheet(scene, o.thickness, thicker);
   fs::create_directories(folder);
   if (o.ok) write_manufacturing_files(folder.u8string(), o.realised, o.plan);
   if (o.ok) write_part_drawing(load_result_json(problem, o), problem, (folder / "drawing.pdf").u8string());

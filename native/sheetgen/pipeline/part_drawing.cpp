@@ -171,7 +171,9 @@ std::string problem_label(const std::string& source) {
 DrawingSheetPart drawing_sheet_part(const json& e, const Problem& scene) {
   try {
     // The sheet the part is made of: a thicker gauge when the problem's gave none (docs/pipeline.md).
-    const Problem problem = problem_at_sheet(scene, e.contains("thickness_m") ? number(e, "thickness_m", "part") : 0.0);
+    std::optional<Problem> thicker;
+    const Problem& problem =
+        problem_at_sheet(scene, e.contains("thickness_m") ? number(e, "thickness_m", "part") : 0.0, thicker);
     DrawingSheetPart d;
     d.part_name = need(e, "load", "part").get<std::string>();
     d.problem_name = problem_label(problem.source);

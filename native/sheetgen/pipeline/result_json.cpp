@@ -125,7 +125,8 @@ json load_entry(const Problem& problem, const LoadOutcome& o) {
   p["status"] = o.ok ? "ok" : "no_valid_part";
   if (!o.ok) p["reason"] = o.reason;
   p["segments"] = o.part.segments;
-  const Problem sheet = problem_at_sheet(problem, o.thickness);
+  std::optional<Problem> thicker;
+  const Problem& sheet = problem_at_sheet(problem, o.thickness, thicker);
   p["thickness_m"] = sheet.material.thickness;
   p["gauges_tried"] = o.gauges_tried;
   if (!o.part.segments.empty()) add_part_fields(p, sheet, o);

@@ -93,9 +93,12 @@ TEST(SheetGauges, LengthsTheFileGaveStayAtEveryGauge) {
   // problem_at_sheet: the problem's own sheet (or none given) leaves it untouched.
   Problem by_hand = parse(problem_json());
   by_hand.manufacturing.bend_radius = 1e-3;  // set in code, not in `given`
-  EXPECT_DOUBLE_EQ(problem_at_sheet(by_hand, 1.6e-3).manufacturing.bend_radius, 1e-3);
-  EXPECT_DOUBLE_EQ(problem_at_sheet(by_hand, 0.0).manufacturing.bend_radius, 1e-3);
-  EXPECT_DOUBLE_EQ(problem_at_sheet(by_hand, 2.0e-3).manufacturing.bend_radius, 8e-3);
+  std::optional<Problem> storage;
+  EXPECT_EQ(&problem_at_sheet(by_hand, 1.6e-3, storage), &by_hand);  // itself, not a copy
+  EXPECT_EQ(&problem_at_sheet(by_hand, 0.0, storage), &by_hand);
+  EXPECT_FALSE(storage.has_value());
+  EXPECT_DOUBLE_EQ(problem_at_sheet(by_hand, 2.0e-3, storage).manufacturing.bend_radius, 8e-3);
+  EXPECT_TRUE(storage.has_value());
 }
 
 }  // namespace
