@@ -6,10 +6,13 @@ seed gives a different result (shelf).
 Run: PYTHONPATH=tools /usr/bin/python3 tests/python/test_determinism.py --sheetgen build/native/cli/sheetgen
 """
 import argparse
+import json
 import os
 import sys
+import tempfile
 
 from sheetgen_tools import paths, runner
+from sheetgen_tools.problem import INCH, with_absolute_files
 
 
 def strip_timing(x):
@@ -20,12 +23,27 @@ def strip_timing(x):
     return x
 
 
-def run(sheetgen, threads, seed, scene="corner"):
+def one_gauge_problem(scene, folder):
+    """The scene's problem with one thicker gauge, 0.071 in, instead of the six of its default:
+    a load without a part runs the gauge step (docs/pipeline.md "Thicker gauges") once."""
+    path = paths.scene_problem(scene)
+    with open(path) as f:
+        doc = with_absolute_files(json.load(f), os.path.dirname(path))
+    doc.setdefault("material", {})["gauges"] = [0.071 * INCH]
+    out = os.path.join(folder, scene + "_one_gauge.json")
+    with open(out, "w") as f:
+        json.dump(doc, f)
+    return out
+
+
+def run(sheetgen, folder, threads, seed, scene="corner"):
     # A small search: determinism does not depend on its size, and the five runs are the fast tier's.
-    # corner at 2 x 100 finds no part and so runs every fallback pass (web roots, flat extensions,
-    # seed retries, the press-brake fallback), 13 s each; shelf ends after three passes in 2.5 s.
+    # corner at 2 x 100 finds no part in its sheet and so runs every fallback pass (web roots, flat
+    # extensions, seed retries, the press-brake fallback), then all of them again in one thicker gauge;
+    # shelf ends after three passes in 2.5 s.
     options = runner.SolveOptions(chains=2, iterations=100, beam=2, threads=threads, seed=seed, sheetgen=sheetgen)
-    solved = runner.solve(paths.scene_problem(scene), options=options)
+    # One problem file per scene for every run: result.json names it by its path.
+    solved = runner.solve(one_gauge_problem(scene, folder), options=options)
     if not solved.finished:
         raise SystemExit("solve failed: " + solved.stderr)
     doc, out = solved.result, solved.out_dir
@@ -42,12 +60,14 @@ def main():
     ap.add_argument("--sheetgen", required=True)
     args = ap.parse_args()
     sheetgen = os.path.abspath(args.sheetgen)
-    a = run(sheetgen, 1, 7)
-    b = run(sheetgen, 2, 7)
-    c1, c2 = run(sheetgen, 2, 7, "shelf"), run(sheetgen, 2, 7, "shelf")
-    d = run(sheetgen, 2, 8, "shelf")
+    with tempfile.TemporaryDirectory(prefix="sheetgen_determinism_") as folder:
+        a = run(sheetgen, folder, 1, 7)
+        b = run(sheetgen, folder, 2, 7)
+        c1, c2 = run(sheetgen, folder, 2, 7, "shelf"), run(sheetgen, folder, 2, 7, "shelf")
+        d = run(sheetgen, folder, 2, 8, "shelf")
     checks = [
         ("corner, 1 thread vs 2 threads, seed 7: result.json and DXF identical", a == b),
+        ("corner, seed 7: the thicker gauge was searched", a[0]["parts"][0]["gauges_tried"] == 1),
         ("shelf, two runs, 2 threads, seed 7: identical", c1 == c2),
         ("shelf, seed 7 vs seed 8: different", c1[0] != d[0]),
     ]
