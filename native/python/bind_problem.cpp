@@ -71,7 +71,8 @@ void bind_problem(py::module_& m) {
       .def_readonly("density", &Material::density, "kg/m^3")
       .def_readonly("yield_strength", &Material::yield_strength, "Pa")
       .def_readonly("ultimate_strength", &Material::ultimate_strength, "Pa")
-      .def_readonly("thickness", &Material::thickness, "m");
+      .def_readonly("thickness", &Material::thickness, "m")
+      .def_readonly("gauges", &Material::gauges, "m, the thicker sheets a load without a part is searched in");
 
   py::class_<Problem>(m, "Problem")
       .def_readonly("source", &Problem::source)

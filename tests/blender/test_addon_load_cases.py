@@ -88,6 +88,34 @@ class ProblemFiles(unittest.TestCase):
                 self.assertEqual(bpy.ops.sheetgen.import_problem(filepath=out), {'FINISHED'})
                 self.assertEqual(build_problem(), first)
 
+    def test_thicker_gauges_from_the_material_panel(self):
+        """Thicker gauges (docs/pipeline.md): off writes [], a list in mm writes it in m, empty writes nothing
+        (the format's default); the native reader reads what was written, and an import sets the panel back."""
+        from sheetgen_blender import native
+        from sheetgen_blender.core import jsonio
+        self.imported("preset")
+        p = bpy.context.scene.sheetgen
+        self.assertTrue(p.thicker_gauges)
+        self.assertEqual(p.gauges_mm, "")
+        self.assertNotIn("gauges", build_problem()["material"])
+        inch = 0.0254
+        parse = lambda pr: list(native.get().parse_problem(jsonio.dumps(pr), "scene", ".").material.gauges)  # noqa: E731
+        self.assertEqual(len(parse(build_problem())), 6)                    # 0.071 ... 0.160 in above 0.063 in
+        self.assertAlmostEqual(parse(build_problem())[0], 0.071 * inch, places=12)
+        p.thicker_gauges = False
+        self.assertEqual(build_problem()["material"]["gauges"], [])
+        self.assertEqual(parse(build_problem()), [])
+        p.thicker_gauges, p.gauges_mm = True, "1.8034, 2.032"
+        written = build_problem()
+        self.assertEqual(written["material"]["gauges"], [1.8034e-3, 2.032e-3])
+        self.assertEqual(parse(written), [1.8034e-3, 2.032e-3])
+        out = os.path.join(self.tmp.name, "gauges.json")
+        self.assertEqual(bpy.ops.sheetgen.export_problem(filepath=out), {'FINISHED'})
+        clean_scene()
+        self.assertEqual(bpy.ops.sheetgen.import_problem(filepath=out), {'FINISHED'})
+        p = bpy.context.scene.sheetgen
+        self.assertEqual((p.thicker_gauges, p.gauges_mm), (True, "1.8034, 2.032"))
+
     def test_panel_properties_after_import(self):
         self.imported("factors")
         p = bpy.context.scene.sheetgen
