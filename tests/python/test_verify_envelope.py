@@ -165,8 +165,9 @@ class CornerUnderFar25561(unittest.TestCase):
     def test_raised_floors_fail_and_floors_just_met_pass(self):
         f1 = self.measure.frequencies_hz[0]
         factor = min(c.buckling_factor for c in self.measure.cases)
-        for requirements, failing in (({"min_frequency_hz": 1.5 * f1}, "first frequency"),
-                                      ({"min_buckling_factor": 1.5 * factor}, "buckling factor"),
+        # The eigen floors have no tolerance: 0.5 % above CalculiX's own values fails.
+        for requirements, failing in (({"min_frequency_hz": 1.005 * f1}, "first frequency"),
+                                      ({"min_buckling_factor": 1.005 * factor}, "buckling factor"),
                                       ({"max_deflection": 1e-6}, "exceeds the limit")):
             failures = " ".join(self.judge(requirements).failures)
             self.assertIn(failing, failures, requirements)

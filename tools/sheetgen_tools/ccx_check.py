@@ -42,8 +42,11 @@ taken from result.json's numbers (those are only shown beside, and compared).
   from ccx *BUCKLE steps on the S6 deck, one per load direction of the cases
   (BUCKLE_LOAD_SHARE says at which load), and the first natural frequency from
   its *FREQUENCY step (the sheet's density and the box's mass). A part fails
-  when the factor is below min_buckling_factor by more than BUCKLING_TOLERANCE,
-  or f1 below min_frequency_hz by more than FREQUENCY_TOLERANCE. Why S6 and not
+  when the factor is below min_buckling_factor or f1 below min_frequency_hz at
+  all: these floors are requirements an engineer signs against, with no
+  tolerance; the solver keeps its own reserve above them for the difference
+  between its model and this one (docs/fem.md "Model reserve on the eigen
+  checks"). Why S6 and not
   the S4 deck of the stresses: S4 on our split triangles scatters in buckling
   (29 % below S6 on the bay's battery part, 44 % on the shelf's forward case),
   S6 meets the closed forms of docs/fem.md to 0.2 %.
@@ -68,10 +71,6 @@ from .ccx_stress import max_von_mises_per_block
 
 CCX_TOLERANCE = 0.05  # the check's acceptance bound on compliance (see the module docstring)
 STRESS_TOLERANCE = 0.05  # CalculiX's maximum stress may exceed the allowed one by this share
-# A buckling factor is a stiffness ratio: the compliance's bound. A frequency
-# goes as the square root of a stiffness: half of it.
-BUCKLING_TOLERANCE = CCX_TOLERANCE
-FREQUENCY_TOLERANCE = CCX_TOLERANCE / 2
 # The *BUCKLE steps carry each case's loads times this share of the buckling
 # floor. ccx 2.20 factors with a fixed shift of 1 and reports the factors
 # nearest it, so a factor below about half the step's load can be missed
@@ -452,14 +451,14 @@ def _judge_eigen(prob, part, m, findings):
         findings.note(f"{name}: buckling factor CalculiX S6 {lowest.buckling_factor:.4g} ('{lowest.name}'; "
                       f"{m.buckle_steps} *BUCKLE steps at {m.buckle_load_share:.3g} x the loads), "
                       f"required {eigen.min_buckling_factor:.3g}")
-        if lowest.buckling_factor < (1 - BUCKLING_TOLERANCE) * eigen.min_buckling_factor:
+        if lowest.buckling_factor < eigen.min_buckling_factor:
             findings.fail(f"{name}: CalculiX buckling factor {lowest.buckling_factor:.4g} ('{lowest.name}') is below "
                           f"the required {eigen.min_buckling_factor:.3g}")
     if f1 is not None:
         floor = eigen.min_frequency_hz
         findings.note(f"{name}: natural frequencies CalculiX S6 {', '.join(f'{f:.4g}' for f in m.frequencies_hz)} Hz; "
                       + (f"required f1 >= {floor:.4g} Hz" if floor is not None else "no floor on f1"))
-        if floor is not None and f1 < (1 - FREQUENCY_TOLERANCE) * floor:
+        if floor is not None and f1 < floor:
             findings.fail(f"{name}: CalculiX first frequency {f1:.4g} Hz is below the required {floor:.4g} Hz")
     return (lowest.buckling_factor if lowest else None), (lowest.name if lowest else None), f1
 

@@ -44,9 +44,9 @@ double violation(const Candidate& c, const Problem& problem) {
   // The eigen checks, when they ran: how far below the floors, relative.
   const EnvelopeResult& env = c.fem.envelope;
   if (env.eigen_checked && !c.fem.stable_enough)
-    v += std::max(0.0, problem.requirements.min_buckling_factor / env.buckling_factor - 1.0);
+    v += std::max(0.0, problem.requirements.design_buckling_factor() / env.buckling_factor - 1.0);
   if (env.eigen_checked && !c.fem.frequency_ok && !env.frequencies_hz.empty())
-    v += std::max(0.0, *problem.requirements.min_frequency_hz / env.frequencies_hz.front() - 1.0);
+    v += std::max(0.0, *problem.requirements.design_frequency_hz() / env.frequencies_hz.front() - 1.0);
   return v;
 }
 
@@ -64,10 +64,12 @@ std::string eigen_failure(const StructuralResult& fem, const Requirements& req) 
   // are the candidate's only failures.
   if (!fem.stable_enough)
     why << " buckles in case '" << env.cases[env.governing_buckling].name << "' at " << env.buckling_factor
-        << " times its load, below the required " << req.min_buckling_factor;
+        << " times its load, below the " << req.design_buckling_factor() << " the search holds it to (required "
+        << req.min_buckling_factor << " with the model's reserve)";
   if (!fem.frequency_ok && !env.frequencies_hz.empty())
     why << (fem.stable_enough ? "" : " and") << " has its first natural frequency at " << env.frequencies_hz.front()
-        << " Hz, below the floor " << *req.min_frequency_hz << " Hz";
+        << " Hz, below the " << *req.design_frequency_hz() << " Hz the search holds it to (floor "
+        << *req.min_frequency_hz << " Hz with the model's reserve)";
   return why.str();
 }
 

@@ -56,6 +56,11 @@ std::array<Vec3, 4> Load::bottom_face() const {
   return {c[0], c[2], c[3], c[1]};  // local z = -size/2; outward normal -z
 }
 
+std::optional<double> Requirements::design_frequency_hz() const {
+  if (!min_frequency_hz) return std::nullopt;
+  return *min_frequency_hz * frequency_model_reserve;
+}
+
 double Requirements::compliance_limit(double force_magnitude) const {
   if (max_compliance) return *max_compliance;
   const double deflection = max_deflection ? *max_deflection : 1.0e-3;

@@ -36,7 +36,10 @@ json envelope_json(const EnvelopeResult& env, const Requirements& req) {
             {"box_mass_kg", env.box_mass},
             {"required", {{"checked", req.eigen_checks},
                           {"min_buckling_factor", req.min_buckling_factor},
-                          {"min_frequency_hz", req.min_frequency_hz ? json(*req.min_frequency_hz) : json(nullptr)}}}};
+                          {"min_frequency_hz", req.min_frequency_hz ? json(*req.min_frequency_hz) : json(nullptr)},
+                          // What the search held the part to: the floors times the model's reserve.
+                          {"held_to_buckling_factor", req.design_buckling_factor()},
+                          {"held_to_frequency_hz", req.min_frequency_hz ? json(*req.design_frequency_hz()) : json(nullptr)}}}};
   return e;
 }
 

@@ -39,11 +39,16 @@ std::string final_check_failure(const Candidate& c, const Requirements& req) {
                   env.cases[env.governing_strength].name.c_str());
   } else if (!f.stable_enough) {
     std::snprintf(buf, sizeof buf,
-                  "at the default mesh the cheapest part buckles in case '%s' at %.4g times its load (required %.4g)",
-                  env.cases[env.governing_buckling].name.c_str(), env.buckling_factor, req.min_buckling_factor);
+                  "at the default mesh the cheapest part buckles in case '%s' at %.4g times its load (held to %.4g: "
+                  "required %.4g with the model's reserve)",
+                  env.cases[env.governing_buckling].name.c_str(), env.buckling_factor, req.design_buckling_factor(),
+                  req.min_buckling_factor);
   } else {
-    std::snprintf(buf, sizeof buf, "at the default mesh the cheapest part's first natural frequency is %.4g Hz (floor %.4g Hz)",
-                  env.frequencies_hz.empty() ? 0.0 : env.frequencies_hz.front(), req.min_frequency_hz.value_or(0.0));
+    std::snprintf(buf, sizeof buf,
+                  "at the default mesh the cheapest part's first natural frequency is %.4g Hz (held to %.4g Hz: floor "
+                  "%.4g Hz with the model's reserve)",
+                  env.frequencies_hz.empty() ? 0.0 : env.frequencies_hz.front(), req.design_frequency_hz().value_or(0.0),
+                  req.min_frequency_hz.value_or(0.0));
   }
   return buf;
 }
@@ -154,9 +159,9 @@ bool closer(const Candidate& a, const Candidate& b, const Problem& scene) {
     const EnvelopeResult& env = c.fem.envelope;
     double stable = 0, vibration = 0;
     if (env.eigen_checked && scene.requirements.eigen_checks) {
-      stable = scene.requirements.min_buckling_factor / std::max(1e-12, env.buckling_factor);
+      stable = scene.requirements.design_buckling_factor() / std::max(1e-12, env.buckling_factor);
       if (scene.requirements.min_frequency_hz && !env.frequencies_hz.empty())
-        vibration = *scene.requirements.min_frequency_hz / std::max(1e-12, env.frequencies_hz.front());
+        vibration = *scene.requirements.design_frequency_hz() / std::max(1e-12, env.frequencies_hz.front());
     }
     return std::max({stiff, strong, stable, vibration});
   };

@@ -120,12 +120,13 @@ void vibrate(const ShellModel& m, const ShellSolveOptions& so, const EnvelopeOpt
   if (options.keep_mode_shapes && !v.mode_shapes.empty()) res.vibration_mode = v.mode_shapes.front();
 }
 
-// The eigen checks against the requirements, where the problem asks for them.
+// The eigen checks against the requirements, where the problem asks for them,
+// with the model's reserve (Requirements::buckling_model_reserve).
 void judge_eigen_checks(const Requirements& req, const EnvelopeOptions& options, EnvelopeResult& res) {
   if (!req.eigen_checks) return;
-  if (options.buckling) res.stable_enough = res.buckling_factor >= req.min_buckling_factor;
-  if (req.min_frequency_hz)
-    res.frequency_ok = !res.frequencies_hz.empty() && res.frequencies_hz.front() >= *req.min_frequency_hz;
+  if (options.buckling) res.stable_enough = res.buckling_factor >= req.design_buckling_factor();
+  if (const auto floor = req.design_frequency_hz())
+    res.frequency_ok = !res.frequencies_hz.empty() && res.frequencies_hz.front() >= *floor;
 }
 
 }  // namespace

@@ -46,7 +46,8 @@ struct EnvelopeResult {
   // Whether the eigen checks ran (they may be skipped after a failed static case).
   bool eigen_checked = false;
   // Against the problem's requirements (true when not checked or not required):
-  // the lowest buckling factor >= min_buckling_factor, f1 >= min_frequency_hz.
+  // the lowest buckling factor >= design_buckling_factor(), f1 >=
+  // design_frequency_hz() (the floors with the model's reserve).
   bool stable_enough = true;
   bool frequency_ok = true;
 };

@@ -110,5 +110,38 @@ TEST(EnvelopeAnalysis, OffCentreMassAddsTheMomentOfItsForce) {
   }
 }
 
+// A part passes the eigen checks only with the model's reserve above the
+// floors (Requirements::buckling_model_reserve): its own factor and f1 put the
+// floors just inside and just outside that reserve.
+TEST(EnvelopeAnalysis, EigenChecksHoldThePartToTheFloorsTimesTheModelReserve) {
+  Problem p = envelope_problem();
+  p.requirements.eigen_checks = true;
+  const Part part = test::hat_part(p);
+  const PlateGeometry g = plate_geometry(part, realise(part));
+  const EnvelopeResult free = analyse_part_envelope(p, 0, g);
+  ASSERT_TRUE(std::isfinite(free.buckling_factor));
+  ASSERT_FALSE(free.frequencies_hz.empty());
+  const double lambda = free.buckling_factor, f1 = free.frequencies_hz.front();
+  const Requirements& req = p.requirements;
+  ASSERT_GT(req.buckling_model_reserve, 1.0);
+  ASSERT_GT(req.frequency_model_reserve, 1.0);
+  // Floors that the part meets, by a half and by one and a half times the reserve.
+  const double b_half = 1.0 + 0.5 * (req.buckling_model_reserve - 1.0), f_half = 1.0 + 0.5 * (req.frequency_model_reserve - 1.0);
+  const double b_over = 1.0 + 1.5 * (req.buckling_model_reserve - 1.0), f_over = 1.0 + 1.5 * (req.frequency_model_reserve - 1.0);
+  auto judged = [&](double buckling_floor, double frequency_floor) {
+    Problem q = p;
+    q.requirements.min_buckling_factor = buckling_floor;
+    q.requirements.min_frequency_hz = frequency_floor;
+    return analyse_part_envelope(q, 0, g);
+  };
+  const EnvelopeResult inside = judged(lambda / b_half, f1 / f_half);
+  EXPECT_NEAR(inside.buckling_factor, lambda, 1e-9 * lambda);
+  EXPECT_FALSE(inside.stable_enough);
+  EXPECT_FALSE(inside.frequency_ok);
+  const EnvelopeResult outside = judged(lambda / b_over, f1 / f_over);
+  EXPECT_TRUE(outside.stable_enough);
+  EXPECT_TRUE(outside.frequency_ok);
+}
+
 }  // namespace
 }  // namespace sheetgen
