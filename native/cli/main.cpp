@@ -430,7 +430,7 @@ int solve(const SolveArgs& a) {
                   l.load.c_str(), l.part.area * 1e4, l.part.area * l.thickness * problem.material.density * 1e3,
                   sheet_note(problem, l).c_str(),
                   l.part.bends, l.part.fem.compliance, l.part.fem.compliance_limit, l.part.fem.deflection_along_force * 1e3,
-                  l.part.fem.deflection * 1e3, l.part.fem.margin_of_safety, l.total_seconds);
+                  l.part.fem.deflection * 1e3, l.part.fem.margin_of_safety, l.total_time.wall_seconds);
     else
       std::printf("%-20s no valid part: %s\n", l.load.c_str(), l.reason.c_str());
   }

@@ -110,12 +110,24 @@ class HardCases(unittest.TestCase):
         self.assertIn(part["seed_retry"], (0, 1, 2))  # the pass whose candidate came nearest to valid
         self.assertTrue(result["search"]["flat_fallback"])
         self.assertEqual(result["search"]["seed_retries"], 2)
+        self.check_stage_times(part["timing"])
         # Flat extensions already on: no third search (it would repeat the first); retries off.
         p, result, _ = solve(prob, "--flat-extensions", "--seed-retries", "0")
         self.assertEqual(p.exit_code, 2, p.stdout + p.stderr)
         self.assertFalse(result["parts"][0]["flat_pass_tried"])
         self.assertEqual(result["parts"][0]["seed_retries_tried"], 0)
         self.assertFalse(result["search"]["flat_fallback"])
+
+    def check_stage_times(self, timing):
+        # Wall and CPU per stage, summed over the load's passes: each stage took
+        # some of both, and together they fit in the load's total (planning and
+        # the bookkeeping between stages are the rest).
+        for clock in ("", "cpu_"):
+            stages = [timing[f"{s}_{clock}s"] for s in ("environment", "discovery", "composition", "sizing")]
+            self.assertTrue(all(t >= 0 for t in stages), timing)
+            self.assertGreater(timing[f"discovery_{clock}s"], 0, timing)
+            self.assertGreater(timing[f"composition_{clock}s"], 0, timing)
+            self.assertLessEqual(sum(stages), timing[f"total_{clock}s"] + 1e-3, timing)
 
     def test_ctrl_c_ends_within_a_second_and_writes_nothing(self):
         path, out = write_problem(floor_and_wall(), "sheetgen_sigint_")

@@ -14,5 +14,6 @@ set(SHEETGEN_CORE_SOURCES
   cost_model.cpp
   press_brake_tooling.cpp
   sheet_gauges.cpp
+  stopwatch.cpp
   problem.cpp
 )

@@ -37,10 +37,6 @@ bool GenerateResult::all_ok() const {
 
 namespace {
 
-double seconds_since(std::chrono::steady_clock::time_point t) {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t).count();
-}
-
 // A finished part as an obstacle for the loads after it: both faces of the
 // sheet (mid-surface +- t/2), so the next part keeps its clearance from the metal.
 EnvironmentMesh part_as_obstacle(const std::string& name, const RealisedPart& realised, double thickness) {
@@ -235,9 +231,9 @@ bool search_sheet(const Environment& env, int li, const GenerateOptions& options
 // The work of another search of the same load, added to `to`: environment,
 // discovery and composition time, FEM calls.
 void add_search_work(LoadOutcome& to, const LoadOutcome& from) {
-  to.environment_seconds += from.environment_seconds;
-  to.discovery_seconds += from.discovery_seconds;
-  to.composition_seconds += from.composition_seconds;
+  to.environment_time += from.environment_time;
+  to.discovery_time += from.discovery_time;
+  to.composition_time += from.composition_time;
   to.fem_calls += from.fem_calls;
 }
 
@@ -255,13 +251,13 @@ bool search_gauges(const Problem& problem, const LoadEnvironments& environments,
   LoadOutcome& first = search.answer;  // the problem's sheet's, which the work of every gauge is added to
   std::string tried;
   for (size_t k = 0; k < gauges.size() && !cancel_requested(progress); ++k) {
-    const auto t0 = std::chrono::steady_clock::now();
+    const Stopwatch clock;
     if (progress) progress->stage = static_cast<int>(Stage::Environment);
     std::unique_ptr<Environment> sheet = environments.at_sheet(at_gauge(problem, gauges[k]), progress);
     if (!sheet) return false;
     LoadSearch thick;
     thick.answer.load = first.load;
-    thick.answer.environment_seconds = seconds_since(t0);
+    thick.answer.environment_time = clock.elapsed();
     if (progress) progress->gauge = static_cast<int>(k + 1);
     bool blocked = false;
     const bool finished = search_sheet(*sheet, li, options, flat_fallback, progress, thick, blocked);
@@ -275,7 +271,7 @@ bool search_gauges(const Problem& problem, const LoadEnvironments& environments,
     if (blocked) break;
     if (thick.answer.ok) {
       LoadOutcome& found = thick.answer;
-      found.environment_seconds = found.discovery_seconds = found.composition_seconds = 0;
+      found.environment_time = found.discovery_time = found.composition_time = {};
       found.fem_calls = 0;
       add_search_work(found, first);  // every sheet's work, this one's included
       found.gauges_tried = first.gauges_tried;
@@ -291,14 +287,14 @@ bool search_gauges(const Problem& problem, const LoadEnvironments& environments,
 }  // namespace
 
 GenerateResult generate(const Problem& input, const GenerateOptions& options, GenerateProgress* progress) {
-  const auto start = std::chrono::steady_clock::now();
+  const Stopwatch clock;
   const Problem problem = with_options(input, options);
   GenerateResult result = result_settings(problem, options);
   if (progress) progress->loads = static_cast<int>(problem.loads.size());
   CancelRelay relay(progress);
   LoadEnvironments environments;
   for (int li = 0; li < static_cast<int>(problem.loads.size()); ++li) {
-    const auto load_start = std::chrono::steady_clock::now();
+    const Stopwatch load_clock;
     LoadSearch search;
     LoadOutcome& first = search.answer;
     first.load = problem.loads[li].name;
@@ -307,7 +303,7 @@ GenerateResult generate(const Problem& input, const GenerateOptions& options, Ge
       progress->stage = static_cast<int>(Stage::Environment);
     }
     const Environment* env = environments.next(problem, progress);
-    if (env) first.environment_seconds = seconds_since(load_start);
+    if (env) first.environment_time = load_clock.elapsed();
     if (!env || cancel_requested(progress)) {
       result.cancelled = true;
       break;
@@ -336,11 +332,11 @@ GenerateResult generate(const Problem& input, const GenerateOptions& options, Ge
       size_load_answer(sheet_env, li, options, search);
       if (out.sizing_cuts > 0) plan_answer(search.flat_scene ? *search.flat_scene : sheet_env.problem(), li, out);
     }
-    out.total_seconds = seconds_since(load_start);
+    out.total_time = load_clock.elapsed();
     result.loads.push_back(std::move(out));
   }
   if (progress) progress->stage = static_cast<int>(Stage::Done);
-  result.seconds = seconds_since(start);
+  result.seconds = clock.wall_seconds();
   return result;
 }
 

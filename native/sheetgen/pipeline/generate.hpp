@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "sheetgen/core/stopwatch.hpp"
 #include "sheetgen/compose/composition.hpp"
 #include "sheetgen/core/problem.hpp"
 #include "sheetgen/discovery/discovery.hpp"
@@ -93,14 +94,16 @@ struct LoadOutcome {
   int sizing_trials = 0, sizing_cuts = 0;
   double sizing_cost_before = 0, sizing_area_before = 0;
   bool sizing_final_check_failed = false;
-  double sizing_seconds = 0;
   // The sheet the answer is made of, m: the problem's thickness, or the first
   // of material.gauges that gave the load a valid part when the problem's
   // sheet gave none (docs/pipeline.md "Thicker gauges"). Mass, drawings, the
   // flat pattern and the FEM of the part use it.
   double thickness = 0;
   int gauges_tried = 0;              // thicker gauges searched (0: the problem's sheet only)
-  double environment_seconds = 0, discovery_seconds = 0, composition_seconds = 0, total_seconds = 0;
+  // Where the load's time went, wall and the process's CPU, over every pass
+  // and gauge of the load: the environment, discovery, composition (with the
+  // final check), sizing, and the whole load (planning included).
+  Elapsed environment_time, discovery_time, composition_time, sizing_time, total_time;
 };
 
 struct GenerateResult {

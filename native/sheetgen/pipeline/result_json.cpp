@@ -117,8 +117,18 @@ void add_search_fields(json& p, const LoadOutcome& o) {
                    {"area_before_m2", o.sizing_area_before},
                    {"search_score_before_m2", o.sizing_cost_before},
                    {"final_check_failed", o.sizing_final_check_failed}};
-  p["timing"] = {{"environment_s", o.environment_seconds}, {"discovery_s", o.discovery_seconds},
-                 {"composition_s", o.composition_seconds}, {"sizing_s", o.sizing_seconds}, {"total_s", o.total_seconds}};
+  // Wall seconds per stage (the keys of old files), and the process's CPU
+  // seconds beside them: CPU over wall is how many cores a stage kept busy.
+  p["timing"] = {{"environment_s", o.environment_time.wall_seconds},
+                 {"discovery_s", o.discovery_time.wall_seconds},
+                 {"composition_s", o.composition_time.wall_seconds},
+                 {"sizing_s", o.sizing_time.wall_seconds},
+                 {"total_s", o.total_time.wall_seconds},
+                 {"environment_cpu_s", o.environment_time.cpu_seconds},
+                 {"discovery_cpu_s", o.discovery_time.cpu_seconds},
+                 {"composition_cpu_s", o.composition_time.cpu_seconds},
+                 {"sizing_cpu_s", o.sizing_time.cpu_seconds},
+                 {"total_cpu_s", o.total_time.cpu_seconds}};
 }
 
 // One entry of parts[]: the part's fields in the sheet it is made of.

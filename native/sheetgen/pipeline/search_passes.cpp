@@ -1,7 +1,6 @@
 #include "sheetgen/pipeline/search_passes.hpp"
 
 #include <algorithm>
-#include <chrono>
 #include <cstdio>
 #include <cstdlib>
 #include <optional>
@@ -17,10 +16,6 @@
 namespace sheetgen {
 
 namespace {
-
-double seconds_since(std::chrono::steady_clock::time_point t) {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t).count();
-}
 
 bool cancel_requested(const GenerateProgress* progress) { return progress && progress->cancel.load(); }
 
@@ -68,12 +63,12 @@ struct FinalCheck {
   void run(const std::vector<Candidate>& valid, LoadOutcome& out) {
     for (const Candidate& c : valid) {
       if (failed.count({c.segments, c.cost})) continue;
-      const auto tc = std::chrono::steady_clock::now();
+      const Stopwatch tc;
       Candidate checked = evaluate_part(scene, env, load_index, c, 0.0);
       ++out.fem_calls;
       if (std::getenv("SHEETGEN_COMPOSE_DEBUG"))
         std::fprintf(stderr, "[final check] %s%s: %s in %.2f s\n", out.load.c_str(), web_roots ? " (web roots)" : "",
-                     checked.valid() ? "valid" : "fails", seconds_since(tc));
+                     checked.valid() ? "valid" : "fails", tc.wall_seconds());
       if (checked.valid()) {
         out.part = checked;
         out.ok = true;
@@ -94,7 +89,7 @@ bool compose_and_check(const Problem& scene, const Environment& env, int li, con
   ComposeOptions copt = options.compose;
   copt.beam_width = scene.search.beam_width;
   copt.threads = scene.search.threads;
-  const auto t0 = std::chrono::steady_clock::now();
+  const Stopwatch clock;
   ComposeResult composed = compose_part(scene, env, li, base, library, copt, compose_progress(progress));
   if (composed.cancelled || cancel_requested(progress)) return false;
   FinalCheck check{scene, env, li, web_roots, {}, {}};
@@ -122,7 +117,7 @@ bool compose_and_check(const Problem& scene, const Environment& env, int li, con
   out.fem_calls += composed.fem_calls;
   out.self_rivet_candidates = composed.self_rivet_candidates;
   out.lip_candidates = composed.lip_candidates;
-  out.composition_seconds = seconds_since(t0);
+  out.composition_time = clock.elapsed();
   if (!out.ok) {
     out.part = composed.found ? composed.valid.front() : composed.closest;
     out.reason = composed.found ? check.reason : composed.reason;
@@ -173,15 +168,16 @@ bool closer(const Candidate& a, const Candidate& b, const Problem& scene) {
 // later answer is kept when it is valid or nearer to valid. True when it was
 // kept.
 bool merge_pass(LoadOutcome& best, LoadOutcome&& pass, const Problem& scene) {
-  const double discovery_s = best.discovery_seconds + pass.discovery_seconds;
-  const double composition_s = best.composition_seconds + pass.composition_seconds;
+  Elapsed discovery = best.discovery_time, composition = best.composition_time;
+  discovery += pass.discovery_time;
+  composition += pass.composition_time;
   const int fem_calls = best.fem_calls + pass.fem_calls;
   const int press_rejected = best.press_rejected + pass.press_rejected;
   const long long press_rejected_segments = best.press_rejected_segments + pass.press_rejected_segments;
   const bool keep = pass.ok || closer(pass.part, best.part, scene);
   if (keep) best = std::move(pass);
-  best.discovery_seconds = discovery_s;
-  best.composition_seconds = composition_s;
+  best.discovery_time = discovery;
+  best.composition_time = composition;
   best.fem_calls = fem_calls;
   best.press_rejected = press_rejected;
   best.press_rejected_segments = press_rejected_segments;
@@ -207,9 +203,9 @@ bool search_pass(const Problem& scene, const Environment& env, int li, const Gen
   }
   DiscoveryOptions dopt = DiscoveryOptions::from(scene);
   dopt.web_roots = web_roots;
-  const auto t0 = std::chrono::steady_clock::now();
+  const Stopwatch clock;
   const DiscoveryResult found = discover_segments(scene, env, li, dopt, progress ? &progress->discovery : nullptr);
-  out.discovery_seconds = seconds_since(t0);
+  out.discovery_time = clock.elapsed();
   out.discovery = found.stats;
   if (found.cancelled || cancel_requested(progress)) return false;
 
@@ -222,7 +218,7 @@ bool search_pass(const Problem& scene, const Environment& env, int li, const Gen
   if (later) pooled = out;
   bool finished = compose_and_check(scene, env, li, found.base, found.library, options, web_roots, progress, out);
   if (finished && !out.ok && later && pool.size() > found.library.size() && !cancel_requested(progress)) {
-    pooled->discovery_seconds = 0;  // counted once, in `out`
+    pooled->discovery_time = {};  // counted once, in `out`
     pooled->press_rejected_segments = 0;
     pooled->library_size = pool.size();
     finished = compose_and_check(scene, env, li, found.base, pool, options, web_roots, progress, *pooled);
@@ -233,7 +229,7 @@ bool search_pass(const Problem& scene, const Environment& env, int li, const Gen
     std::fprintf(stderr, "[pass] %s web %d flat %d press %d seed %llu: discovery %.1f s, composition %.1f s, %d analyses, "
                  "library %d, %s\n",
                  out.load.c_str(), web_roots, scene.manufacturing.flat_extensions, scene.manufacturing.press_brake_required,
-                 static_cast<unsigned long long>(scene.search.seed), out.discovery_seconds, out.composition_seconds,
+                 static_cast<unsigned long long>(scene.search.seed), out.discovery_time.wall_seconds, out.composition_time.wall_seconds,
                  out.fem_calls, out.library_size, out.ok ? "valid part" : "no part");
   return finished;
 }
@@ -330,7 +326,7 @@ void size_load_answer(const Environment& env, int li, const GenerateOptions& opt
   if (out.press_fallback) searched.manufacturing.press_brake_required = false;
   SizingOptions so;
   so.threads = scene.search.threads;
-  const auto t0 = std::chrono::steady_clock::now();
+  const Stopwatch clock;
   SizingResult sized = size_part(searched, env, li, out.part, so);
   out.sized = true;
   out.sizing_trials = sized.trials;
@@ -340,11 +336,11 @@ void size_load_answer(const Environment& env, int li, const GenerateOptions& opt
   out.sizing_final_check_failed = sized.final_check_failed;
   out.fem_calls += sized.trials + sized.final_checks;
   out.part = std::move(sized.part);
-  out.sizing_seconds = seconds_since(t0);
+  out.sizing_time = clock.elapsed();
   if (std::getenv("SHEETGEN_COMPOSE_DEBUG"))
     std::fprintf(stderr, "[sizing] %s: %d trials, %d cuts%s, cost %.5g -> %.5g m2, area %.1f -> %.1f cm2, %.1f s\n",
                  out.load.c_str(), sized.trials, sized.cuts, sized.final_check_failed ? " (failed at the default mesh)" : "",
-                 sized.cost_before, out.part.cost, sized.area_before * 1e4, out.part.area * 1e4, out.sizing_seconds);
+                 sized.cost_before, out.part.cost, sized.area_before * 1e4, out.part.area * 1e4, out.sizing_time.wall_seconds);
 }
 
 LoadSearch search_load(const Environment& env, int li, const LoadOutcome& start, const GenerateOptions& options,
