@@ -279,6 +279,34 @@ class DeckText(unittest.TestCase):
         self.assertEqual([(s.name, s.loads) for s in kept], [("a", steps[2].loads), ("c", steps[4].loads)])
 
 
+class EigenJudgement(unittest.TestCase):
+    """verify holds CalculiX's buckling factor and f1 to the problem's floors
+    with no tolerance (docs/fem.md "Model reserve on the eigen checks"): the
+    numbers of one measured part judged against floors just below and just
+    above them."""
+
+    def judge(self, factor, f1, requirements):
+        from sheetgen_tools.findings import Findings
+        case = ccx_check.CaseMeasure(name="down 6 g", s4=1.0, s6=1.0, reference=1.0, deflection=1e-3,
+                                     sigma_max=1e8, buckling_factor=factor)
+        m = ccx_check.CalculixMeasure(load="box", cases=[case], reference="solid C3D10", frequencies_hz=[f1, 2 * f1],
+                                      eigen_checked=True, buckle_load_share=0.15, buckle_steps=1,
+                                      buckling_suspect=[], n_singular=0, n_corners=0, mismatches=[], notes=[],
+                                      failures=[], seconds={})
+        prob = {"loads": [{"name": "box", "mass": 2.0}], "requirements": requirements}
+        findings = Findings()
+        ccx_check._judge_eigen(prob, {"load": "box"}, m, findings)
+        return " ".join(findings.failures)
+
+    def test_floors_met_exactly_pass_and_any_shortfall_fails(self):
+        self.assertEqual(self.judge(1.5, 30.0, {"min_buckling_factor": 1.5, "min_frequency_hz": 30.0}), "")
+        failures = self.judge(1.4985, 29.97, {"min_buckling_factor": 1.5, "min_frequency_hz": 30.0})
+        self.assertIn("CalculiX buckling factor", failures)  # 0.1 % short
+        self.assertIn("CalculiX first frequency", failures)  # 0.1 % short
+        # sharp_angles' sized part before the reserve: S6 1.492 against 1.5.
+        self.assertIn("CalculiX buckling factor", self.judge(1.492, 32.0, {"min_buckling_factor": 1.5}))
+
+
 class ExportedDeck(unittest.TestCase):
     """A deck of `sheetgen export-ccx` against the problem it was made from."""
 
