@@ -12,7 +12,9 @@
   *BUCKLE step is the case asked for, its MASS points have the box's mass,
   centre and inertia, and the solid reference finds the box link beside the
   mass stand-in; a problem with another mass or another forward axis does not
-  match the deck.
+  match the deck;
+* verify's eigen judgement: CalculiX's buckling factor and f1 held to the
+  floors with no tolerance.
 
 Run: PYTHONPATH=tools /usr/bin/python3 tests/python/test_ccx_deck.py --sheetgen build/native/cli/sheetgen
 """
