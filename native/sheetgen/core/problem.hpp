@@ -96,7 +96,7 @@ struct Requirements {
   // The search holds a part's buckling factor and first frequency to the
   // floors above times these, so that an independent solver agrees the part
   // meets the floors themselves: measured against CalculiX's S6 shells, our
-  // buckling factor was up to 5.6 % and our f1 up to 2.1 % above theirs
+  // buckling factor was up to 5.6 % and our f1 up to 1.7 % above theirs
   // (docs/fem.md "Model reserve on the eigen checks"). Results still report
   // the floors as the problem gives them. -
   double buckling_model_reserve = 1.06;

@@ -9,9 +9,9 @@
 #include <string>
 #include <vector>
 
-#include "sheetgen/core/stopwatch.hpp"
 #include "sheetgen/compose/composition.hpp"
 #include "sheetgen/core/problem.hpp"
+#include "sheetgen/core/stopwatch.hpp"
 #include "sheetgen/discovery/discovery.hpp"
 #include "sheetgen/part/manufacturing_plan.hpp"
 
