@@ -25,7 +25,7 @@ import shutil
 
 from sheetgen_tools.paths import ROOT
 from sheetgen_tools.pictures import convergence_picture, flat_picture, scene_picture
-from sheetgen_tools.problem import load_problem, problem_of_result, sheets
+from sheetgen_tools.problem import load_problem, problem_of_result
 
 # Paper, Fig. 10 table (Barda et al. 2023): avionics bay, 10 loads.
 PAPER = {"expert": (12.45, 5.169), "ours": (3.65, 4.467)}
@@ -215,26 +215,23 @@ def bay_section(out, summary):
                        "run for %d." % (a["ok"], b["ok"])]
             md += ["", "Per load (area, mass, bends; the sheet where a thicker gauge gave the part):", "",
                    "| load | free angles | right angles |", "|---|---|---|"]
-            bay_dir = os.path.join(out, "avionics_bay")
-            doc, _ = load_problem(problem_of_result(bay_dir, res_a))
-            t = sheets(doc)[0]
             for pa, pb in zip(res_a["parts"], res_b["parts"]):
-                md.append("| %s | %s | %s |" % (pa["load"], load_cell(pa, t), load_cell(pb, t)))
+                md.append("| %s | %s | %s |" % (pa["load"], load_cell(pa), load_cell(pb)))
         md += ["", "Our bay's boxes are smaller and closer to their rivet areas than the paper's (its parts average "
                "0.45 m² each, ours %.0f cm² over the free-angle parts), so only the ratios are comparable, not the "
                "absolute numbers." % (a["area_m2"] / max(a["ok"], 1) * 1e4), ""]
     return md
 
 
-def load_cell(part, problem_sheet):
+def load_cell(part):
     """One load's cell of the per-load comparison, e.g. "934 cm², 0.468 kg, 18 bends,
-    0.071 in sheet" (the sheet only where it is not the problem's, `problem_sheet` m)."""
+    0.071 in sheet" (the sheet only for a part in a thicker gauge than the problem's,
+    the rule of part_rows)."""
     if part["status"] != "ok":
         return "no valid part"
     text = "%.0f cm², %.3f kg, %d bends" % (part["area_m2"] * 1e4, part["mass_kg"], part["bends"])
-    sheet = part.get("thickness_m", problem_sheet)
-    if abs(sheet - problem_sheet) > 1e-9:
-        text += ", %.3f in sheet" % (sheet / 0.0254)
+    if part.get("gauges_tried"):
+        text += ", %.3f in sheet" % (part["thickness_m"] / 0.0254)
     return text
 
 
