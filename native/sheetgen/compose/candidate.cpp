@@ -44,13 +44,13 @@ Candidate evaluate_part(const Problem& problem, const Environment& env, int load
   const RealisedPart realised = realise(c.part);
   ValidityOptions vo;
   vo.stop_at_first = true;
-  const ValidityReport report = check_validity(c.part, realised, env, vo);
+  const SheetSpec spec = SheetSpec::from(problem);  // the grammar of the search, which may not be env's problem's
+  const ValidityReport report = check_validity(c.part, realised, spec, env, vo);
   if (!report.valid()) {
     c.reason = report.first_reason();
     c.message = report.summary();
     return c;
   }
-  const SheetSpec spec = SheetSpec::from(problem);
   ManufacturingPlan plan = plan_manufacturing(c.part, spec);
   c.area = plan.flat.area();
   c.rivets = count_rivets(problem, c, realised);

@@ -62,7 +62,7 @@ LipResult add_stiffening_lips(const Part& part, const Environment& env, const Pr
         const RealisedPart rq = realise(q);
         ValidityOptions vo;
         vo.only_tab = idx;
-        if (!check_validity(q, rq, env, vo).valid()) continue;
+        if (!check_validity(q, rq, spec, env, vo).valid()) continue;
         if (!unfolds_cleanly(q, spec)) continue;
         out.part = std::move(q);
         out.added_area += span->width() * l;

@@ -260,7 +260,7 @@ bool cast_and_check(const Context& cx, Part& part, int i, std::optional<RivetPla
   ValidityOptions vo;
   vo.only_tab = i;
   vo.contact_sample_spacing = cx.o.feeler_contact_spacing * cx.env.voxel_size();
-  if (!check_validity(part, rp, cx.env, vo).valid()) return false;
+  if (!check_validity(part, rp, cx.spec, cx.env, vo).valid()) return false;
   if (rivet) *rivet = cast.rivet;
   return true;
 }
@@ -291,9 +291,9 @@ std::optional<Candidate> try_connection(Chain& ch, const Context& cx, const Part
     const RealisedPart rp = realise(trial.part);
     ValidityOptions vo;
     vo.only_tab = last;
-    if (!check_validity(trial.part, rp, cx.env, vo).valid()) continue;
+    if (!check_validity(trial.part, rp, cx.spec, cx.env, vo).valid()) continue;
     vo.only_tab = f;
-    if (!check_validity(trial.part, rp, cx.env, vo).valid()) continue;
+    if (!check_validity(trial.part, rp, cx.spec, cx.env, vo).valid()) continue;
     Candidate c;
     c.work = std::move(trial);
     c.feeler_tag = part.tabs[path.front()].tag;
@@ -507,7 +507,7 @@ bool optimise(Candidate& c, const Context& cx, Chain& ch) {
   };
   auto why = [&](const SegmentWork& w) {
     const RealisedPart rp = realise(w.part);
-    const ValidityReport v = check_validity(w.part, rp, cx.env);
+    const ValidityReport v = check_validity(w.part, rp, cx.spec, cx.env);
     if (!v.valid()) return std::string("V:") + v.summary();
     const FlatPattern flat = unfold(w.part, cx.spec);
     if (!flat.ok()) return std::string("UNFOLD ") + flat.message;

@@ -28,7 +28,7 @@ double SegmentWork::area() const {
 
 bool segment_valid(const SegmentWork& work, const Environment& env, const SheetSpec& spec) {
   const RealisedPart rp = realise(work.part);
-  return check_validity(work.part, rp, env).valid() && unfolds_cleanly(work.part, spec);
+  return check_validity(work.part, rp, spec, env).valid() && unfolds_cleanly(work.part, spec);
 }
 
 namespace {
@@ -117,7 +117,7 @@ ContractResult contract_segment(SegmentWork& work, const Environment& env, const
         const double e = next.length();
         if (e < energy - 1e-9) {
           const bool ok = check_unfold ? segment_valid(next, env, spec)
-                                       : check_validity(next.part, realise(next.part), env).valid();
+                                       : check_validity(next.part, realise(next.part), spec, env).valid();
           if (ok) {
             work = std::move(next);
             energy = e;
@@ -147,7 +147,7 @@ struct Acceptance {
   const SheetSpec& spec;
   bool check_unfold;
   bool operator()(const SegmentWork& w) const {
-    return check_unfold ? segment_valid(w, env, spec) : check_validity(w.part, realise(w.part), env).valid();
+    return check_unfold ? segment_valid(w, env, spec) : check_validity(w.part, realise(w.part), spec, env).valid();
   }
 };
 
@@ -414,10 +414,10 @@ WidenResult widen_segment(SegmentWork& work, const Environment& env, const Sheet
         // Only tab i changed (its children kept their roots): check what involves it, and the unfold.
         ValidityOptions vo;
         vo.only_tab = i;
-        bool ok = check_validity(next.part, realise(next.part), env, vo).valid();
+        bool ok = check_validity(next.part, realise(next.part), spec, env, vo).valid();
         if (ok && carries_flange) {
           vo.only_tab = work.flange;
-          ok = check_validity(next.part, realise(next.part), env, vo).valid();
+          ok = check_validity(next.part, realise(next.part), spec, env, vo).valid();
           vo.only_tab = i;
         }
         if (ok) ok = unfolds_cleanly(next.part, spec);

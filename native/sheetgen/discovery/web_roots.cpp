@@ -37,7 +37,7 @@ std::vector<Segment> make_web_roots(const Part& base, const Environment& env, co
       const RealisedPart rp = realise(trial);
       ValidityOptions vo;
       vo.only_tab = i;
-      if (!check_validity(trial, rp, env, vo).valid() || !unfolds_cleanly(trial, spec)) continue;
+      if (!check_validity(trial, rp, spec, env, vo).valid() || !unfolds_cleanly(trial, spec)) continue;
       part = std::move(trial);
       Segment s;
       Tab t = part.tabs[i];

@@ -338,12 +338,19 @@ ValidityReport check_validity(const Part& part, const RealisedPart& rp, const Sh
   return report;
 }
 
-ValidityReport check_validity(const Part& part, const RealisedPart& rp, const Environment& env, const ValidityOptions& o) {
-  ValidityReport report = check_validity(part, rp, SheetSpec::from(env.problem()), o);
+ValidityReport check_validity(const Part& part, const RealisedPart& rp, const SheetSpec& spec, const Environment& env,
+                              const ValidityOptions& o) {
+  ValidityReport report = check_validity(part, rp, spec, o);
   if (o.stop_at_first && !report.valid()) return report;
+  // The environment's part of the check reads the scene and the sheet's
+  // lengths, which no grammar changes.
   ValidityReport e = check_environment(part, rp, env, o);
   report.violations.insert(report.violations.end(), e.violations.begin(), e.violations.end());
   return report;
+}
+
+ValidityReport check_validity(const Part& part, const RealisedPart& rp, const Environment& env, const ValidityOptions& o) {
+  return check_validity(part, rp, SheetSpec::from(env.problem()), env, o);
 }
 
 }  // namespace sheetgen

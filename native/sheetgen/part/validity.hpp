@@ -77,7 +77,12 @@ ValidityReport check_self_intersection(const Part& part, const RealisedPart& rea
 // Rivet flanges flush on their rivet areas with room for a rivet, then obstacle clearance.
 ValidityReport check_environment(const Part& part, const RealisedPart& realised, const Environment& env,
                                  const ValidityOptions& options = {});
-// All of the above, cheapest first.
+// All of the above, cheapest first: the limits of `spec`, the grammar of the
+// search that asks (a pass with flat extensions or right angles differs from
+// the environment's problem there), and the environment's scene.
+ValidityReport check_validity(const Part& part, const RealisedPart& realised, const SheetSpec& spec,
+                              const Environment& env, const ValidityOptions& options = {});
+// The same in the grammar of the environment's own problem.
 ValidityReport check_validity(const Part& part, const RealisedPart& realised, const Environment& env,
                               const ValidityOptions& options = {});
 // Everything that needs no environment (limits + self-intersection).
