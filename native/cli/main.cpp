@@ -317,11 +317,10 @@ int export_ccx(const ExportCcxArgs& a) {
   const int load_index = load_index_of(scene, a.load, a.result);
   const nlohmann::json& part = part_of(doc, a.load, a.result);
   // The sheet the part is made of: a thicker gauge when the problem's gave the load none (docs/pipeline.md).
-  const nlohmann::json* t = part.contains("thickness_m") ? &part["thickness_m"] : nullptr;
-  if (t && !(t->is_number() && t->get<double>() > 0))
-    throw sheetgen::InputError(a.result, "parts[load=" + a.load + "].thickness_m", "must be a positive number (m)");
+  const std::optional<double> t =
+      sheetgen::sheet_thickness_from_json(part.dump(), a.result + " parts[load=" + a.load + "]");
   std::optional<sheetgen::Problem> thicker;
-  const sheetgen::Problem& problem = sheetgen::problem_at_sheet(scene, t ? t->get<double>() : 0.0, thicker);
+  const sheetgen::Problem& problem = sheetgen::problem_at_sheet(scene, t.value_or(0.0), thicker);
   const sheetgen::PlateGeometry geometry = sheetgen::plate_geometry_from_json(part.dump(), a.result);
   sheetgen::PartModelOptions model_options;
   model_options.element_size = a.element_size_mm * 1e-3;
@@ -355,6 +354,7 @@ struct SolveArgs {
   bool no_web_roots = false;
   bool no_flat_fallback = false;
   bool no_sizing = false;
+  bool no_right_angle_pass = false;
   int seed_retries = sheetgen::GenerateOptions{}.seed_retries;
 };
 
@@ -376,6 +376,7 @@ int solve(const SolveArgs& a) {
   options.flat_fallback = !a.no_flat_fallback;
   options.seed_retries = a.seed_retries;
   options.sizing = !a.no_sizing;
+  options.right_angle_pass = !a.no_right_angle_pass;
   sheetgen::GenerateProgress progress;
   std::signal(SIGINT, on_sigint);
   std::signal(SIGTERM, on_sigint);
@@ -401,7 +402,10 @@ int solve(const SolveArgs& a) {
       // The second and third searches of a load (web roots, flat extensions;
       // docs/pipeline.md) restart the bar; say so.
       const std::string label = std::string(sheetgen::to_string(stage)) +
-                                (progress.flat_pass.load() ? " (flat)" : progress.web_roots.load() ? " (webs)" : "") +
+                                (progress.right_angle_pass.load() ? " (right angles)"
+                                 : progress.flat_pass.load()      ? " (flat)"
+                                 : progress.web_roots.load()      ? " (webs)"
+                                                                  : "") +
                                 (progress.gauge.load() > 0 ? " (gauge " + std::to_string(progress.gauge.load()) + ")" : "");
       std::fprintf(stderr, "\r  load %d/%d [%-*s] %-18s segments %3d  evaluated %4d  best %.1f cm^2   ", progress.load.load() + 1,
                    progress.loads.load(), width, std::string(filled, '#').c_str(), label.c_str(),
@@ -484,6 +488,8 @@ CLI::App* add_solve_command(CLI::App& app, SolveArgs& a) {
                       "do not search a load again with web roots when the first search finds no valid part");
   solve_cmd->add_flag("--no-flat-fallback", a.no_flat_fallback,
                       "do not search a load a third time with flat extensions when no search found a valid part");
+  solve_cmd->add_flag("--no-right-angle-pass", a.no_right_angle_pass,
+                      "do not search each load once more in the right-angle grammar for a cheaper part");
   solve_cmd->add_flag("--no-sizing", a.no_sizing,
                       "keep each answer as the composition found it, without narrowing its tabs to its limits");
   solve_cmd->add_option("--seed-retries", a.seed_retries,

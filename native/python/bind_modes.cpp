@@ -5,6 +5,7 @@
 #include <cmath>
 
 #include "sheetgen/core/input_error.hpp"
+#include "sheetgen/core/sheet_gauges.hpp"
 #include "sheetgen/fem/fem_error.hpp"
 #include "sheetgen/structure/envelope_analysis.hpp"
 #include "sheetgen/structure/part_model.hpp"
@@ -40,6 +41,9 @@ void bind_modes(py::module_& m) {
           throw InputError(source, "load_index", "no load " + std::to_string(load_index) + " in a problem of " +
                                                      std::to_string(problem.loads.size()) + " loads");
         const PlateGeometry geometry = plate_geometry_from_json(part_json, source);
+        // The sheet the part is made of, as export-ccx reads it: a thicker gauge moves the base tab.
+        std::optional<Problem> thicker;
+        const Problem& sheet = problem_at_sheet(problem, sheet_thickness_from_json(part_json, source).value_or(0.0), thicker);
         PartModelOptions model_options;  // the final check's model: default mesh, the part's self-rivets
         model_options.self_rivets = self_rivet_ties_from_json(part_json, source);
         EnvelopeOptions options;
@@ -48,9 +52,9 @@ void bind_modes(py::module_& m) {
         EnvelopeResult r;
         {
           py::gil_scoped_release release;  // seconds of eigen solves
-          part = build_part_model(problem, load_index, geometry, model_options);
+          part = build_part_model(sheet, load_index, geometry, model_options);
           ShellSolver solver;
-          r = analyse_envelope(problem, part, options, model_options.element, solver);
+          r = analyse_envelope(sheet, part, options, model_options.element, solver);
         }
         Eigen::MatrixXd vertices(part.model.nodes.size(), 3);
         for (size_t i = 0; i < part.model.nodes.size(); ++i) vertices.row(i) = part.model.nodes[i].transpose();

@@ -173,7 +173,7 @@ class SameResultAsCli(unittest.TestCase):
         # the FEM mesh: as many sheet nodes as the triangles use, the part's thickness
         self.assertEqual(len(obj.data.polygons), raw["triangles"].shape[0])
         self.assertEqual(len(obj.data.vertices), len(np.unique(raw["triangles"])))
-        self.assertAlmostEqual(obj.modifiers["Thickness"].thickness, 0.0016, places=7)
+        self.assertAlmostEqual(obj.modifiers["Thickness"].thickness, part["thickness_m"], places=7)
         self.assertTrue(obj.sheetgen.exclude)
         self.assertTrue(col.objects[LOAD + " part"].hide_get())
 

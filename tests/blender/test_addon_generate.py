@@ -83,7 +83,7 @@ class GenerateCorner(unittest.TestCase):
         self.assertEqual(sum(e.use_seam for e in obj.data.edges), part["bends"])
         mod = obj.modifiers["Thickness"]
         self.assertEqual(mod.type, 'SOLIDIFY')
-        self.assertAlmostEqual(mod.thickness, 0.0016, places=7)
+        self.assertAlmostEqual(mod.thickness, part["thickness_m"], places=7)  # the part's own sheet
         self.assertEqual(mod.offset, 0.0)
         self.assertTrue(obj.material_slots[0].material.metallic > 0.5)
 
@@ -122,7 +122,7 @@ class GenerateCorner(unittest.TestCase):
             r = 0.5 * h["diameter"]
             self.assertAlmostEqual(poly.area, 0.5 * n * r * r * np.sin(2 * np.pi / n), places=9)
         flat = self.col.objects["avionics_box flat"]
-        t = self._problem().get("material", {}).get("thickness", 1.6e-3)
+        t = self.part()["thickness_m"]  # the sheet the part is made of, which may be a thicker gauge
         self.assertAlmostEqual(obj.location.z - flat.location.z, t / 2 + 1e-4, places=6)
         xs = [(flat.matrix_world @ Vector(c)).x for c in flat.bound_box]
         for v in obj.data.vertices:

@@ -21,9 +21,9 @@ from sheetgen_tools.verify import VerifyOptions, verify_output
 
 SHEETGEN = None
 INCH = 0.0254
-# One search per sheet: no web, flat or seed-retry passes, and no second round
+# One search per sheet: no web, flat, seed-retry or right-angle passes, and no second round
 # without the press-brake check, so the test pays for two searches.
-ONE_PASS = ("--seed-retries", "0", "--no-web-roots", "--no-flat-fallback")
+ONE_PASS = ("--seed-retries", "0", "--no-web-roots", "--no-flat-fallback", "--no-right-angle-pass")
 
 
 def stiff_problem(gauges):

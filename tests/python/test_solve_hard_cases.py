@@ -6,6 +6,7 @@ second leaving nothing that looks finished.
 Run: PYTHONPATH=tools /usr/bin/python3 tests/python/test_solve_hard_cases.py --sheetgen build/native/cli/sheetgen
 """
 import json
+import math
 import os
 import signal
 import subprocess
@@ -117,6 +118,32 @@ class HardCases(unittest.TestCase):
         self.assertFalse(result["parts"][0]["flat_pass_tried"])
         self.assertEqual(result["parts"][0]["seed_retries_tried"], 0)
         self.assertFalse(result["search"]["flat_fallback"])
+
+    def test_right_angle_pass_replaces_the_answer_only_by_a_cheaper_right_angle_part(self):
+        # A box between a floor and a wall, both rivet areas: the free search's
+        # part scores 0.255 m^2 before sizing, the right-angle pass finds one of
+        # 0.206 m^2 (measured; docs/pipeline.md "Right-angle pass").
+        prob = floor_and_wall(ras=[{"name": "wall_all", "mesh": "wall", "faces": [0, 1]},
+                                   {"name": "floor_all", "mesh": "floor", "faces": [0, 1]}])
+        p, with_pass, _ = solve(prob)
+        q, without, _ = solve(prob, "--no-right-angle-pass")
+        self.assertEqual((p.exit_code, q.exit_code), (0, 0), p.stdout + p.stderr + q.stdout + q.stderr)
+        a, b = with_pass["parts"][0], without["parts"][0]
+        self.assertTrue(with_pass["search"]["right_angle_pass"] and a["right_angle_pass_tried"], a)
+        self.assertFalse(without["search"]["right_angle_pass"] or b["right_angle_pass_tried"], b)
+        self.assertTrue(a["right_angle_pass"], a)
+        self.assertLess(a["sizing"]["search_score_before_m2"], b["sizing"]["search_score_before_m2"])
+        # The answer is in the right-angle grammar: every bend 90 deg (+-0.5) or a
+        # flat extension, no skew.
+        for tab in a["tabs"]:
+            q3 = tab["parameters"] and tab["parameters"]["theta3"]
+            if not tab["parameters"]:
+                continue
+            self.assertTrue(q3 == 0.0 or abs(abs(q3) - math.pi / 2) <= math.radians(0.5) + 1e-9, tab)
+            self.assertLessEqual(max(abs(tab["parameters"]["theta1"]), abs(tab["parameters"]["theta2"])), 1e-3 + 1e-9, tab)
+        # A right-angle run has no second right-angle search.
+        r, square, _ = solve(prob, "--right-angles")
+        self.assertFalse(square["search"]["right_angle_pass"] or square["parts"][0]["right_angle_pass_tried"])
 
     def check_stage_times(self, timing):
         # Wall and CPU per stage, summed over the load's passes: each stage took

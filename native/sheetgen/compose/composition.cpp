@@ -193,15 +193,16 @@ class BeamSearch {
 };
 
 // The cost bound (ComposeOptions::kept_valid): the cost of the kept_valid-th
-// cheapest valid part so far. Fixed for each parallel batch, so the result
-// does not depend on the thread count.
+// cheapest valid part so far, or the options' ceiling when that is lower.
+// Fixed for each parallel batch, so the result does not depend on the thread
+// count.
 double BeamSearch::cost_bound() const {
   const size_t k = static_cast<size_t>(std::max(0, options_.kept_valid));
-  if (k == 0 || result_.valid.size() < k) return std::numeric_limits<double>::infinity();
+  if (k == 0 || result_.valid.size() < k) return options_.cost_ceiling;
   std::vector<double> costs;
   for (const Candidate& v : result_.valid) costs.push_back(v.cost);
   std::nth_element(costs.begin(), costs.begin() + (k - 1), costs.end());
-  return costs[k - 1];
+  return std::min(costs[k - 1], options_.cost_ceiling);
 }
 
 double BeamSearch::default_size(const Part& part) const {

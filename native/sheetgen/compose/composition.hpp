@@ -6,6 +6,7 @@
 // FEM, and scored by its cost (core/cost_model.hpp). The answer is
 // the cheapest candidate that is stiff and strong enough.
 #include <atomic>
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -29,6 +30,10 @@ struct ComposeOptions {
   // not analysed: it can be neither the answer nor a beam state (docs/pipeline.md
   // "Cost bound"). 0 analyses every candidate.
   int kept_valid = 4;
+  // A candidate costing at least this is not analysed either: a search that
+  // can only replace an answer in hand if it finds a cheaper part (the
+  // right-angle pass, docs/pipeline.md "Right-angle pass"). Infinity: no ceiling.
+  double cost_ceiling = std::numeric_limits<double>::infinity();
   // Screening (docs/pipeline.md "Screening"): a level's candidates are first
   // analysed on a mesh this many times the default size; only the
   // screen_keep * beam_width best of them by the beam's score, and every one
@@ -63,7 +68,7 @@ struct ComposeResult {
   int candidates = 0;
   int self_rivet_candidates = 0;   // gusset variants evaluated
   int lip_candidates = 0;          // lipped variants evaluated
-  int skipped_by_cost = 0;         // candidates not analysed (ComposeOptions::kept_valid)
+  int skipped_by_cost = 0;         // candidates not analysed (ComposeOptions::kept_valid, cost_ceiling)
   int screen_fem_calls = 0;        // analyses on the screening mesh (not in fem_calls)
   int screened_out = 0;            // candidates analysed on the screening mesh only
   int press_rejected = 0;          // candidates no bend order of the press brake's tools makes (not analysed)

@@ -61,6 +61,28 @@ std::optional<double> Requirements::design_frequency_hz() const {
   return *min_frequency_hz * frequency_model_reserve;
 }
 
+namespace {
+constexpr double kRightAngleTolerance = 0.5 * M_PI / 180.0;  // rad, either side of 90 deg
+constexpr double kRightAngleSkew = 1e-3;                     // rad
+}  // namespace
+
+void Manufacturing::restrict_to_right_angles() {
+  min_bend_angle = 0.5 * M_PI - kRightAngleTolerance;
+  max_bend_angle = 0.5 * M_PI + kRightAngleTolerance;
+  max_skew = kRightAngleSkew;
+  flat_extensions = true;
+}
+
+bool Manufacturing::right_angles_only() const {
+  return min_bend_angle >= 0.5 * M_PI - kRightAngleTolerance - 1e-12 &&
+         max_bend_angle <= 0.5 * M_PI + kRightAngleTolerance + 1e-12;
+}
+
+bool Manufacturing::admits_right_angle_pass() const {
+  return !right_angles_only() && min_bend_angle <= 0.5 * M_PI - kRightAngleTolerance &&
+         max_bend_angle >= 0.5 * M_PI + kRightAngleTolerance && max_skew >= kRightAngleSkew;
+}
+
 double Requirements::compliance_limit(double force_magnitude) const {
   if (max_compliance) return *max_compliance;
   const double deflection = max_deflection ? *max_deflection : 1.0e-3;

@@ -155,6 +155,19 @@ struct Manufacturing {  // lengths m, angles rad; defaults depend on thickness t
   bool press_brake_required = true;
   bool press_brake_fallback = true;
   PressBrakeTooling press_brake_tools = default_press_brake_tooling();  // `press_brake_tools`
+
+  // The expert's practice (paper Sec. 1): every bend 90 deg, no skew, and plates
+  // widened by flat extensions, as an expert cuts a plate larger rather than
+  // bending it (docs/grammar.md "Flat extensions"). Set as limits, so
+  // sampling, optimisation and validity all obey it; +-0.5 deg and 1 mrad absorb
+  // rounding in the angles that are solved for.
+  void restrict_to_right_angles();
+  // Whether these limits are already the right-angle ones.
+  bool right_angles_only() const;
+  // Whether the right-angle grammar is a strict subset of the one these limits
+  // allow: 90 deg lies inside the bend limits and they are not right-angle
+  // already (the right-angle pass, docs/pipeline.md "Right-angle pass").
+  bool admits_right_angle_pass() const;
 };
 
 struct SearchSettings {

@@ -132,18 +132,8 @@ Problem with_options(const Problem& input, const GenerateOptions& options) {
   if (options.beam_width) problem.search.beam_width = *options.beam_width;
   if (options.threads) problem.search.threads = *options.threads;
   if (options.seed) problem.search.seed = *options.seed;
-  if (options.right_angles) {
-    // The expert's practice (paper Sec. 1): every bend 90 deg, no skew. Set as
-    // manufacturing limits, so sampling, optimisation and validity all obey it
-    // (+-0.5 deg and 1 mrad absorb rounding in the angles that are solved for).
-    problem.manufacturing.min_bend_angle = (90.0 - 0.5) * M_PI / 180.0;
-    problem.manufacturing.max_bend_angle = (90.0 + 0.5) * M_PI / 180.0;
-    problem.manufacturing.max_skew = 1e-3;
-  }
-  // An expert widens a right-angle bracket's plate by cutting it larger, not by
-  // bending it: without flat extensions the right-angle grammar can only turn
-  // 90 deg at every tab (docs/grammar.md "Flat extensions").
-  if (options.right_angles || options.flat_extensions) problem.manufacturing.flat_extensions = true;
+  if (options.right_angles) problem.manufacturing.restrict_to_right_angles();  // flat extensions included
+  if (options.flat_extensions) problem.manufacturing.flat_extensions = true;
   return problem;
 }
 
@@ -157,6 +147,7 @@ GenerateResult result_settings(const Problem& problem, const GenerateOptions& op
   result.stiffening_lips = options.compose.stiffening_lips;
   result.web_fallback = options.web_fallback;
   result.flat_fallback = options.flat_fallback && !problem.manufacturing.flat_extensions;
+  result.right_angle_pass = options.right_angle_pass && problem.manufacturing.admits_right_angle_pass();
   result.seed_retries = options.seed_retries;
   result.sizing = options.sizing;
   return result;
@@ -209,22 +200,29 @@ void plan_answer(const Problem& answer_scene, int li, LoadOutcome& out) {
   if (out.ok) place_rivets(answer_scene, li, out);
 }
 
+// How a load is searched on each sheet: with a flat-extension pass
+// (GenerateResult::flat_fallback), and with or without the press-brake check.
+struct SearchRound {
+  bool flat_fallback = true;
+  bool press_fallback = false;  // without the check ("prefer", docs/manufacturing.md "Press brake")
+};
+
 // The search of one load at the sheet of `env`'s problem: the blocked-base
 // test, every pass, and the answer's manufacturing plan; `blocked` says the
 // base tab itself is not clear. False when cancelled.
-bool search_sheet(const Environment& env, int li, const GenerateOptions& options, bool flat_fallback,
+bool search_sheet(const Environment& env, int li, const GenerateOptions& options, SearchRound round,
                   GenerateProgress* progress, LoadSearch& search, bool& blocked) {
   LoadOutcome& out = search.answer;
   out.thickness = env.problem().material.thickness;
   out.reason = blocked_load_reason(env, li, out.load);
   blocked = !out.reason.empty();
   if (blocked) return true;
-  LoadSearch found = search_load(env, li, out, options, flat_fallback, progress);
+  LoadSearch found = search_load(env, li, out, options, round.flat_fallback, round.press_fallback, progress);
   if (!found.finished || cancel_requested(progress)) return false;
   search = std::move(found);
   search.answer.thickness = env.problem().material.thickness;
   if (progress) progress->stage = static_cast<int>(Stage::Plan);
-  plan_answer(search.flat_scene ? *search.flat_scene : env.problem(), li, search.answer);
+  plan_answer(search.answer_scene ? *search.answer_scene : env.problem(), li, search.answer);
   return true;
 }
 
@@ -245,7 +243,7 @@ void add_search_work(LoadOutcome& to, const LoadOutcome& from) {
 // problem's sheet's nearest candidate, and its reason names the gauges tried.
 // A base tab that is blocked at one gauge is blocked at every thicker one.
 bool search_gauges(const Problem& problem, const LoadEnvironments& environments, int li, const GenerateOptions& options,
-                   bool flat_fallback, GenerateProgress* progress, LoadSearch& search,
+                   SearchRound round, GenerateProgress* progress, LoadSearch& search,
                    std::unique_ptr<Environment>& gauge_env) {
   const std::vector<double>& gauges = problem.material.gauges;
   LoadOutcome& first = search.answer;  // the problem's sheet's, which the work of every gauge is added to
@@ -260,7 +258,7 @@ bool search_gauges(const Problem& problem, const LoadEnvironments& environments,
     thick.answer.environment_time = clock.elapsed();
     if (progress) progress->gauge = static_cast<int>(k + 1);
     bool blocked = false;
-    const bool finished = search_sheet(*sheet, li, options, flat_fallback, progress, thick, blocked);
+    const bool finished = search_sheet(*sheet, li, options, round, progress, thick, blocked);
     if (progress) progress->gauge = 0;
     if (!finished) return false;
     add_search_work(first, thick.answer);
@@ -281,6 +279,43 @@ bool search_gauges(const Problem& problem, const LoadEnvironments& environments,
     }
   }
   if (!tried.empty()) first.reason += " (no valid part at the thicker gauges tried either: " + tried + " mm)";
+  return true;
+}
+
+// One round over the sheets: the problem's, then its thicker gauges while none
+// gave a valid part. Only a part that exists and is not strong, stiff or
+// stable enough is helped by thicker sheet: where no candidate was analysed
+// (no way to a rivet area, nothing the press brake bends) a thicker one fits
+// no better.
+bool search_round(const Problem& problem, const LoadEnvironments& environments, const Environment& env, int li,
+                  const GenerateOptions& options, SearchRound round, GenerateProgress* progress, LoadSearch& search,
+                  std::unique_ptr<Environment>& gauge_env, bool& blocked) {
+  if (!search_sheet(env, li, options, round, progress, search, blocked)) return false;
+  if (blocked || search.answer.ok || !search.answer.part.analysed) return true;
+  return search_gauges(problem, environments, li, options, round, progress, search, gauge_env);
+}
+
+// Every sheet with the press-brake check, then, with "prefer"
+// (docs/manufacturing.md "Press brake") and no part the tools bend on any
+// sheet, every sheet again without it: a shop takes the next gauge up before
+// it takes a part its standard tools cannot bend. The fallback's answer needs
+// other tools, and its plan names the bend and why. False when cancelled.
+bool search_load_sheets(const Problem& problem, const LoadEnvironments& environments, const Environment& env, int li,
+                        const GenerateOptions& options, bool flat_fallback, GenerateProgress* progress,
+                        LoadSearch& search, std::unique_ptr<Environment>& gauge_env) {
+  bool blocked = false;
+  if (!search_round(problem, environments, env, li, options, {flat_fallback, false}, progress, search, gauge_env, blocked))
+    return false;
+  const Manufacturing& mf = problem.manufacturing;
+  if (blocked || search.answer.ok || !mf.press_brake_required || !mf.press_brake_fallback || cancel_requested(progress))
+    return true;
+  LoadSearch fallback;
+  fallback.answer.load = search.answer.load;
+  std::unique_ptr<Environment> fallback_env;
+  if (!search_round(problem, environments, env, li, options, {flat_fallback, true}, progress, fallback, fallback_env,
+                    blocked))
+    return false;
+  if (keep_press_fallback(search, std::move(fallback), problem)) gauge_env = std::move(fallback_env);
   return true;
 }
 
@@ -308,14 +343,9 @@ GenerateResult generate(const Problem& input, const GenerateOptions& options, Ge
       result.cancelled = true;
       break;
     }
-    bool blocked = false;
     std::unique_ptr<Environment> gauge_env;  // the answer's sheet's, when thicker than the problem's
-    bool finished = search_sheet(*env, li, options, result.flat_fallback, progress, search, blocked);
-    // Only a part that exists and is not strong, stiff or stable enough is
-    // helped by thicker sheet: where no candidate was analysed (no way to a
-    // rivet area, nothing the press brake bends) a thicker one fits no better.
-    if (finished && !blocked && !search.answer.ok && search.answer.part.analysed)
-      finished = search_gauges(problem, environments, li, options, result.flat_fallback, progress, search, gauge_env);
+    const bool finished =
+        search_load_sheets(problem, environments, *env, li, options, result.flat_fallback, progress, search, gauge_env);
     if (!finished || cancel_requested(progress)) {
       result.cancelled = true;
       break;
@@ -330,7 +360,7 @@ GenerateResult generate(const Problem& input, const GenerateOptions& options, Ge
     // sheet, stays clear of everything they build (docs/pipeline.md "Sizing").
     if (out.ok && options.sizing) {
       size_load_answer(sheet_env, li, options, search);
-      if (out.sizing_cuts > 0) plan_answer(search.flat_scene ? *search.flat_scene : sheet_env.problem(), li, out);
+      if (out.sizing_cuts > 0) plan_answer(search.answer_scene ? *search.answer_scene : sheet_env.problem(), li, out);
     }
     out.total_time = load_clock.elapsed();
     result.loads.push_back(std::move(out));

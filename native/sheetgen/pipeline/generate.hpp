@@ -37,6 +37,11 @@ struct GenerateOptions {
   // part composes them pooled with those found before it (docs/pipeline.md
   // step 4d); --seed-retries N.
   int seed_retries = 2;
+  // Every load is searched once more in the right-angle grammar, and a valid
+  // part cheaper than the answer replaces it (docs/pipeline.md "Right-angle
+  // pass"); off: --no-right-angle-pass. Not run where the problem's limits are
+  // right angles already or exclude 90 deg.
+  bool right_angle_pass = true;
   // The answer of each load is narrowed tab by tab while it stays valid
   // (docs/pipeline.md "Sizing"); off: --no-sizing.
   bool sizing = true;
@@ -52,6 +57,7 @@ struct GenerateProgress {
   std::atomic<int> loads{0};          // how many
   std::atomic<bool> web_roots{false}; // the current load's second search (with web roots) is running
   std::atomic<bool> flat_pass{false}; // the current load's third search (with flat extensions) is running
+  std::atomic<bool> right_angle_pass{false};  // the current load's right-angle pass is running
   std::atomic<int> gauge{0};          // 0: the problem's sheet; k: the current load is searched at its k-th thicker gauge
   DiscoveryProgress discovery;        // iterations / total of the current load
   ComposeProgress compose;            // level, evaluated, best cost
@@ -82,6 +88,8 @@ struct LoadOutcome {
   bool flat_pass = false;            // the answer comes from that third search
   int seed_retries_tried = 0;        // plain searches with fresh seeds after every other pass found no valid part
   int seed_retry = 0;                // 1-based: the answer comes from that retry; 0: from an earlier pass
+  bool right_angle_pass_tried = false;  // the load was searched once more in the right-angle grammar
+  bool right_angle_pass = false;     // the answer comes from that search (cheaper, or the only valid one)
   // "prefer" (Manufacturing::press_brake_fallback): no search with the press-brake check found a valid
   // part, so the load was searched again without it, and the answer comes from that search.
   bool press_fallback = false;
@@ -99,7 +107,7 @@ struct LoadOutcome {
   // sheet gave none (docs/pipeline.md "Thicker gauges"). Mass, drawings, the
   // flat pattern and the FEM of the part use it.
   double thickness = 0;
-  int gauges_tried = 0;              // thicker gauges searched (0: the problem's sheet only)
+  int gauges_tried = 0;              // thicker gauges searched in the answer's round (0: the problem's sheet only)
   // Where the load's time went, wall and the process's CPU, over every pass
   // and gauge of the load: the environment, discovery, composition (with the
   // final check), sizing, and the whole load (planning included).
@@ -115,6 +123,7 @@ struct GenerateResult {
   bool web_fallback = true;           // a second search with web roots where the first found no part
   bool flat_fallback = true;          // a third search with flat extensions where neither found one
   int seed_retries = 2;               // at most this many searches with fresh seeds where no pass found a part
+  bool right_angle_pass = true;       // every load searched once more in the right-angle grammar
   bool sizing = true;                 // answers narrowed to their limits
   bool cancelled = false;
   double seconds = 0;

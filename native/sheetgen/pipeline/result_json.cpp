@@ -108,6 +108,8 @@ void add_search_fields(json& p, const LoadOutcome& o) {
   p["flat_pass"] = o.flat_pass;
   p["seed_retries_tried"] = o.seed_retries_tried;
   p["seed_retry"] = o.seed_retry;
+  p["right_angle_pass_tried"] = o.right_angle_pass_tried;
+  p["right_angle_pass"] = o.right_angle_pass;
   p["press_fallback"] = o.press_fallback;
   p["press_rejected"] = o.press_rejected;
   p["press_rejected_segments"] = o.press_rejected_segments;
@@ -166,6 +168,7 @@ json result_json(const Problem& problem, const GenerateResult& result, const std
                    {"web_fallback", result.web_fallback},
                    {"flat_fallback", result.flat_fallback},
                    {"seed_retries", result.seed_retries},
+                   {"right_angle_pass", result.right_angle_pass},
                    {"sizing", result.sizing}};
   doc["timing"] = {{"total_s", result.seconds}};
   return doc;

@@ -100,8 +100,11 @@ bool compose_and_check(const Problem& scene, const Environment& env, int li, con
   out.press_rejected += composed.press_rejected;
   // Every kept part failed at the default mesh while the cost bound left dearer
   // ones unanalysed: search again without the bound, which finds exactly the
-  // valid parts of an unbounded search (docs/pipeline.md "Cost bound").
-  if (!out.ok && composed.skipped_by_cost > 0) {
+  // valid parts of an unbounded search (docs/pipeline.md "Cost bound"). The
+  // bound of kept parts acts only once that many are known; what a ceiling
+  // alone skipped (the right-angle pass) stays skipped.
+  const bool kept_bound_acted = copt.kept_valid > 0 && composed.valid.size() >= static_cast<size_t>(copt.kept_valid);
+  if (!out.ok && composed.skipped_by_cost > 0 && kept_bound_acted) {
     ComposeOptions unbounded = copt;
     unbounded.kept_valid = 0;
     ComposeResult again = compose_part(scene, env, li, base, library, unbounded, compose_progress(progress));
@@ -163,18 +166,16 @@ bool closer(const Candidate& a, const Candidate& b, const Problem& scene) {
   return over(a) < over(b);
 }
 
-// A later search of the same load (web roots, flat extensions) against the
-// best so far: times, FEM calls and press-brake rejections count both; the
-// later answer is kept when it is valid or nearer to valid. True when it was
-// kept.
-bool merge_pass(LoadOutcome& best, LoadOutcome&& pass, const Problem& scene) {
+// A later search of the same load added to the best so far: times, FEM calls
+// and press-brake rejections count both; the later answer replaces the best
+// when `keep`. Returns `keep`.
+bool add_pass(LoadOutcome& best, LoadOutcome&& pass, bool keep) {
   Elapsed discovery = best.discovery_time, composition = best.composition_time;
   discovery += pass.discovery_time;
   composition += pass.composition_time;
   const int fem_calls = best.fem_calls + pass.fem_calls;
   const int press_rejected = best.press_rejected + pass.press_rejected;
   const long long press_rejected_segments = best.press_rejected_segments + pass.press_rejected_segments;
-  const bool keep = pass.ok || closer(pass.part, best.part, scene);
   if (keep) best = std::move(pass);
   best.discovery_time = discovery;
   best.composition_time = composition;
@@ -182,6 +183,14 @@ bool merge_pass(LoadOutcome& best, LoadOutcome&& pass, const Problem& scene) {
   best.press_rejected = press_rejected;
   best.press_rejected_segments = press_rejected_segments;
   return keep;
+}
+
+// A later search of the same load (web roots, flat extensions, a seed retry)
+// against the best so far: the later answer is kept when it is valid or
+// nearer to valid. True when it was kept.
+bool merge_pass(LoadOutcome& best, LoadOutcome&& pass, const Problem& scene) {
+  const bool keep = pass.ok || closer(pass.part, best.part, scene);
+  return add_pass(best, std::move(pass), keep);
 }
 
 // One search for one load: discovery, then composition and the final check.
@@ -226,9 +235,10 @@ bool search_pass(const Problem& scene, const Environment& env, int li, const Gen
   }
   if (finished && !out.ok && unbendable_library(found, pool)) out.reason = no_bendable_segment(found);
   if (std::getenv("SHEETGEN_COMPOSE_DEBUG"))  // where a load's time goes, pass by pass
-    std::fprintf(stderr, "[pass] %s web %d flat %d press %d seed %llu: discovery %.1f s, composition %.1f s, %d analyses, "
-                 "library %d, %s\n",
-                 out.load.c_str(), web_roots, scene.manufacturing.flat_extensions, scene.manufacturing.press_brake_required,
+    std::fprintf(stderr, "[pass] %s web %d flat %d right angles %d press %d seed %llu: discovery %.1f s, composition %.1f s, "
+                 "%d analyses, library %d, %s\n",
+                 out.load.c_str(), web_roots, scene.manufacturing.flat_extensions, scene.manufacturing.right_angles_only(),
+                 scene.manufacturing.press_brake_required,
                  static_cast<unsigned long long>(scene.search.seed), out.discovery_time.wall_seconds, out.composition_time.wall_seconds,
                  out.fem_calls, out.library_size, out.ok ? "valid part" : "no part");
   return finished;
@@ -255,8 +265,8 @@ void retry_with_fresh_seeds(const Problem& scene, const Environment& env, int li
   LoadOutcome& best = s.answer;
   SegmentLibrary& pool = s.library;  // a retry searches the kept pass's roots and grammar
   for (int k = 1; k <= options.seed_retries && s.finished && !best.ok && !cancel_requested(progress); ++k) {
-    const bool web_roots = best.web_roots, flat = s.flat_scene.has_value();
-    Problem retry_scene = retry_scene_of(flat ? *s.flat_scene : scene, k);
+    const bool web_roots = best.web_roots, flat = s.answer_scene.has_value();
+    Problem retry_scene = retry_scene_of(flat ? *s.answer_scene : scene, k);
     LoadOutcome retry = start;
     if (progress) progress->flat_pass = flat;
     s.finished = search_pass(retry_scene, env, li, options, web_roots, progress, retry, pool);
@@ -266,7 +276,7 @@ void retry_with_fresh_seeds(const Problem& scene, const Environment& env, int li
     retry.flat_pass = flat;
     retry.seed_retries_tried = best.seed_retries_tried = k;
     retry.seed_retry = k;
-    if (merge_pass(best, std::move(retry), scene) && flat) s.flat_scene = std::move(retry_scene);
+    if (merge_pass(best, std::move(retry), scene) && flat) s.answer_scene = std::move(retry_scene);
   }
 }
 }  // namespace
@@ -298,17 +308,17 @@ LoadSearch search_passes(const Problem& scene, const Environment& env, int li, c
   // plain and web searches stay 26 % over its compliance limit, this one finds
   // a valid part.
   if (s.finished && !first.ok && flat_fallback && !cancel_requested(progress)) {
-    Problem flat_scene = scene;
-    flat_scene.manufacturing.flat_extensions = true;
+    Problem answer_scene = scene;
+    answer_scene.manufacturing.flat_extensions = true;
     LoadOutcome flat = start;
     SegmentLibrary pool;
     if (progress) progress->flat_pass = true;
-    s.finished = search_pass(flat_scene, env, li, options, /*web_roots=*/false, progress, flat, pool);
+    s.finished = search_pass(answer_scene, env, li, options, /*web_roots=*/false, progress, flat, pool);
     if (progress) progress->flat_pass = false;
     flat.web_pass_tried = first.web_pass_tried;
     flat.flat_pass_tried = first.flat_pass_tried = flat.flat_pass = true;
     if (merge_pass(first, std::move(flat), scene)) {
-      s.flat_scene = std::move(flat_scene);
+      s.answer_scene = std::move(answer_scene);
       s.library = std::move(pool);
     }
   }
@@ -322,7 +332,7 @@ void size_load_answer(const Environment& env, int li, const GenerateOptions& opt
   const Problem& scene = env.problem();
   LoadOutcome& out = s.answer;
   if (!options.sizing || !s.finished || !out.ok) return;
-  Problem searched = s.flat_scene ? *s.flat_scene : scene;
+  Problem searched = s.answer_scene ? *s.answer_scene : scene;
   if (out.press_fallback) searched.manufacturing.press_brake_required = false;
   SizingOptions so;
   so.threads = scene.search.threads;
@@ -343,22 +353,69 @@ void size_load_answer(const Environment& env, int li, const GenerateOptions& opt
                  sized.cost_before, out.part.cost, sized.area_before * 1e4, out.part.area * 1e4, out.sizing_time.wall_seconds);
 }
 
+namespace {
+
+// The right-angle pass (docs/pipeline.md "Right-angle pass"): the load
+// searched once more in the right-angle grammar, a subset of the problem's
+// that the free search does not always reach (docs/ablation_composition.md).
+// Only a part cheaper than the answer in hand can replace it, so the
+// composition analyses no candidate costing as much (its cost ceiling); any
+// valid part replaces an answer that is not valid.
+void right_angle_pass(const Problem& scene, const Environment& env, int li, const LoadOutcome& start,
+                      const GenerateOptions& options, GenerateProgress* progress, LoadSearch& s) {
+  if (!options.right_angle_pass || !scene.manufacturing.admits_right_angle_pass() || !s.finished ||
+      cancel_requested(progress))
+    return;
+  LoadOutcome& best = s.answer;
+  Problem square = scene;
+  square.manufacturing.restrict_to_right_angles();
+  GenerateOptions bounded = options;
+  if (best.ok) bounded.compose.cost_ceiling = best.part.cost;
+  LoadOutcome pass = start;
+  SegmentLibrary pool;
+  if (progress) progress->right_angle_pass = true;
+  s.finished = search_pass(square, env, li, bounded, /*web_roots=*/false, progress, pass, pool);
+  if (progress) progress->right_angle_pass = false;
+  pass.web_pass_tried = best.web_pass_tried;
+  pass.flat_pass_tried = best.flat_pass_tried;
+  pass.seed_retries_tried = best.seed_retries_tried;
+  pass.right_angle_pass_tried = best.right_angle_pass_tried = true;
+  pass.right_angle_pass = true;
+  pass.press_fallback = best.press_fallback;  // the same round: with or without the press-brake check
+  const bool keep = s.finished && pass.ok && (!best.ok || pass.part.cost < best.part.cost);
+  if (add_pass(best, std::move(pass), keep)) {
+    s.answer_scene = std::move(square);
+    s.library = std::move(pool);
+  }
+}
+
+}  // namespace
+
 LoadSearch search_load(const Environment& env, int li, const LoadOutcome& start, const GenerateOptions& options,
-                       bool flat_fallback, GenerateProgress* progress) {
-  const Problem& scene = env.problem();
-  LoadSearch s = search_passes(scene, env, li, start, options, flat_fallback, progress);
-  // "prefer" (docs/manufacturing.md "Press brake"): no part the press-brake
-  // tools bend; every pass again without that check. The answer is then a
-  // part that needs other tools, and its plan names the bend and why.
-  if (!s.finished || s.answer.ok || !scene.manufacturing.press_brake_fallback || cancel_requested(progress)) return s;
-  Problem unchecked = scene;
-  unchecked.manufacturing.press_brake_required = false;
-  LoadSearch fallback = search_passes(unchecked, env, li, start, options, flat_fallback, progress);
-  fallback.answer.press_fallback = true;
-  const bool finished = fallback.finished;
-  if (merge_pass(s.answer, std::move(fallback.answer), scene)) s.flat_scene = std::move(fallback.flat_scene);
-  s.finished = finished;
+                       bool flat_fallback, bool press_fallback, GenerateProgress* progress) {
+  Problem scene = env.problem();
+  if (press_fallback) scene.manufacturing.press_brake_required = false;
+  LoadOutcome first = start;
+  first.press_fallback = press_fallback;
+  LoadSearch s = search_passes(scene, env, li, first, options, flat_fallback, progress);
+  right_angle_pass(scene, env, li, first, options, progress, s);
   return s;
+}
+
+bool keep_press_fallback(LoadSearch& checked, LoadSearch&& fallback, const Problem& scene) {
+  LoadOutcome& best = checked.answer;
+  Elapsed environment = best.environment_time;
+  environment += fallback.answer.environment_time;
+  // gauges_tried stays the kept answer's own round's count, which readers take
+  // for "made of a thicker gauge" when it is not 0.
+  const bool keep = merge_pass(best, std::move(fallback.answer), scene);
+  best.environment_time = environment;
+  if (keep) {
+    checked.answer_scene = std::move(fallback.answer_scene);
+    checked.library = std::move(fallback.library);
+  }
+  checked.finished = fallback.finished;
+  return keep;
 }
 
 }  // namespace sheetgen

@@ -3,9 +3,11 @@
 // the pipeline: discovery and composition on the search mesh, then the final
 // check at the default mesh down the valid candidates, cheapest first. A load
 // without a valid part is searched again with web roots, then with flat
-// extensions, then with fresh seeds, and with "prefer" (the press-brake
-// setting) all of that once more without the press-brake check; the answer is
-// the valid one, else the one nearest to valid.
+// extensions, then with fresh seeds; the answer is the valid one, else the
+// one nearest to valid. Last, the right-angle pass replaces it by a cheaper
+// part in the right-angle grammar when it finds one. The caller runs all of
+// that on each sheet, and with "prefer" (the press-brake setting) once more
+// on each sheet without the press-brake check (docs/pipeline.md).
 #include <optional>
 
 #include "sheetgen/core/problem.hpp"
@@ -19,9 +21,10 @@ class Environment;
 struct LoadSearch {
   bool finished = false;              // false: cancelled (the answer is incomplete)
   LoadOutcome answer;                 // the load's outcome with the search's fields filled
-  // The scene of the flat-extension search when the answer comes from it: the
-  // answer's plan and structural model use that grammar too.
-  std::optional<Problem> flat_scene;
+  // The scene of the search the answer comes from when its grammar is not the
+  // problem's (the flat-extension search, the right-angle pass): the answer's
+  // plan, sizing and structural model use that grammar too.
+  std::optional<Problem> answer_scene;
   // The segments the answer's search composed; its seed retries pool theirs
   // into these (docs/pipeline.md, step 4d).
   SegmentLibrary library;
@@ -29,9 +32,16 @@ struct LoadSearch {
 
 // `start` holds the load's fields known before the search (name, environment
 // time); `flat_fallback` is GenerateResult::flat_fallback (the options' wish,
-// off where flat extensions are already on).
+// off where flat extensions are already on); `press_fallback`: every pass
+// without the press-brake check, the answer marked LoadOutcome::press_fallback.
 LoadSearch search_load(const Environment& env, int load_index, const LoadOutcome& start, const GenerateOptions& options,
-                       bool flat_fallback, GenerateProgress* progress);
+                       bool flat_fallback, bool press_fallback, GenerateProgress* progress);
+
+// The press-brake fallback's search (every sheet again without the check)
+// against the checked one's answer: the work of both counts; the fallback's
+// answer is kept when it is valid or nearer to valid, with the gauges its own
+// round tried. True when it was kept.
+bool keep_press_fallback(LoadSearch& checked, LoadSearch&& fallback, const Problem& scene);
 
 // Sizing of the valid answer of a finished search (options.sizing,
 // docs/pipeline.md "Sizing"), in the grammar and checks it was found with: a

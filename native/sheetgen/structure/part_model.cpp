@@ -360,6 +360,19 @@ PlateGeometry plate_geometry_from_json(const std::string& text, const std::strin
   return g;
 }
 
+std::optional<double> sheet_thickness_from_json(const std::string& text, const std::string& source) {
+  nlohmann::json doc;
+  try {
+    doc = nlohmann::json::parse(text);
+  } catch (const nlohmann::json::parse_error& e) {
+    throw InputError(source, "", std::string("is not valid JSON (") + e.what() + ")");
+  }
+  if (!doc.is_object() || !doc.contains("thickness_m")) return std::nullopt;
+  const nlohmann::json& t = doc["thickness_m"];
+  if (!t.is_number() || !(t.get<double>() > 0)) throw InputError(source, "thickness_m", "must be a positive number (m)");
+  return t.get<double>();
+}
+
 std::vector<SelfRivetTie> self_rivet_ties_from_json(const std::string& text, const std::string& source) {
   nlohmann::json doc;
   try {

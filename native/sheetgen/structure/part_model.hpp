@@ -4,6 +4,7 @@
 // and bonded to the base tab (master node at the box centroid carrying the
 // force and moment), self-rivets as rigid ties. Also the one-call analysis the
 // composition step uses, and the CalculiX deck of the same model.
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -127,5 +128,11 @@ PlateGeometry plate_geometry_from_json(const std::string& json_tabs_text, const 
 // solver tied. Empty when the part has none. Throws InputError naming
 // `source` and the field when an entry is malformed.
 std::vector<SelfRivetTie> self_rivet_ties_from_json(const std::string& json_part_text, const std::string& source);
+
+// The thickness_m of a sheetgen-result/1 part (the sheet it is made of, m; a
+// thicker gauge when the problem's gave the load none), or nullopt when the
+// part does not say (older files). Throws InputError naming `source` and the
+// field when it is not a positive number.
+std::optional<double> sheet_thickness_from_json(const std::string& json_part_text, const std::string& source);
 
 }  // namespace sheetgen

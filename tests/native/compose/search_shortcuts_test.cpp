@@ -98,6 +98,33 @@ TEST(CostBound, LeavesOutOnlyCandidatesThatCannotMatter) {
   }
 }
 
+// The cost ceiling (the right-angle pass, docs/pipeline.md "Right-angle
+// pass"): just above the unbounded answer's cost it finds that answer; at its
+// cost it finds no part and analyses nothing that costs as much. Either way
+// every valid part it reports is cheaper than the ceiling.
+TEST(CostBound, ACeilingFindsOnlyCheaperParts) {
+  const CornerLibrary& lib = CornerLibrary::get();
+  const ComposeResult full = lib.compose(plain(0));
+  ASSERT_TRUE(full.found) << full.reason;
+  ComposeOptions above = plain(0);
+  above.cost_ceiling = full.best.cost * (1 + 1e-9);
+  const ComposeResult found = lib.compose(above);
+  ASSERT_TRUE(found.found) << found.reason;
+  EXPECT_EQ(found.best.segments, full.best.segments);
+  EXPECT_EQ(found.best.cost, full.best.cost);
+  EXPECT_GT(found.skipped_by_cost, 0) << "no candidate of the library costs more than its answer";
+  EXPECT_LT(found.fem_calls, full.fem_calls);
+  ComposeOptions at = plain(0);
+  at.cost_ceiling = full.best.cost;
+  const ComposeResult none = lib.compose(at);
+  EXPECT_FALSE(none.found);
+  for (const ComposeResult* r : {&found, &none})
+    for (const Candidate& v : r->valid) EXPECT_LT(v.cost, r == &found ? above.cost_ceiling : at.cost_ceiling);
+  std::printf("ceiling: %d and %d candidates not analysed of %d and %d; FEM calls %d and %d (no ceiling %d)\n",
+              found.skipped_by_cost, none.skipped_by_cost, found.candidates, none.candidates, found.fem_calls,
+              none.fem_calls, full.fem_calls);
+}
+
 TEST(Screening, KeepingEveryCandidateIsThePlainSearch) {
   const CornerLibrary& lib = CornerLibrary::get();
   const ComposeResult ref = lib.compose(plain(4));

@@ -271,3 +271,33 @@ TEST(Problem, NonPlanarAndTooSmallRivetAreasAreRefused) {
 
 }  // namespace
 }  // namespace sheetgen
+
+namespace sheetgen {
+namespace {
+
+// The right-angle grammar (the right-angle pass, docs/pipeline.md): a subset of
+// the default limits, not of limits that exclude 90 deg, and not run twice.
+TEST(Manufacturing, RightAngleGrammarIsASubsetOfTheLimitsThatAdmitIt) {
+  Manufacturing m;
+  EXPECT_FALSE(m.right_angles_only());
+  EXPECT_TRUE(m.admits_right_angle_pass());
+  Manufacturing square = m;
+  square.restrict_to_right_angles();
+  EXPECT_TRUE(square.right_angles_only());
+  EXPECT_FALSE(square.admits_right_angle_pass());
+  EXPECT_TRUE(square.flat_extensions);
+  EXPECT_NEAR(square.min_bend_angle, 89.5 * M_PI / 180, 1e-12);
+  EXPECT_NEAR(square.max_bend_angle, 90.5 * M_PI / 180, 1e-12);
+  Manufacturing shallow = m;
+  shallow.max_bend_angle = 80 * M_PI / 180;  // a shop whose tools stop short of 90 deg
+  EXPECT_FALSE(shallow.admits_right_angle_pass());
+  Manufacturing steep = m;
+  steep.min_bend_angle = 91 * M_PI / 180;
+  EXPECT_FALSE(steep.admits_right_angle_pass());
+  Manufacturing straight = m;
+  straight.max_skew = 0;  // no skew at all is stricter than the pass's 1 mrad
+  EXPECT_FALSE(straight.admits_right_angle_pass());
+}
+
+}  // namespace
+}  // namespace sheetgen

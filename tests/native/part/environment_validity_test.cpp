@@ -51,6 +51,38 @@ TEST(EnvironmentValidity, TabThroughAnObstacle) {
   EXPECT_EQ(into_box.first_reason(), ValidityReason::ObstacleCollision) << into_box.summary();
 }
 
+// A search in another grammar than the environment's problem (the flat-extension
+// and right-angle passes) is judged by its own limits: a flat extension is
+// valid where its grammar allows it, a 45 deg bend is not in the right-angle
+// grammar, and the environment's scene still applies to both.
+TEST(EnvironmentValidity, TheSearchsGrammarDecidesTheLimits) {
+  Problem problem = base_problem();
+  problem.meshes.push_back({"plate", rectangle(-0.05, 0.1, -0.05, 0.05, -0.025), "<inline>"});
+  ASSERT_FALSE(problem.manufacturing.flat_extensions);
+  const Environment env(problem);
+  Part flat = make_base_part(problem.loads[0], 0, kT);
+  const int e = flat.add_tab(0, 0, {0.0, 0.04, 0.03, 0, 0, 0.0});  // the base continued 30 mm, flat
+  flat.add_tab(e, kFarEdge, {0.01, 0.02, 0.018, 0, 0, -90 * kDeg});
+  EXPECT_EQ(check_validity(flat, realise(flat), env).first_reason(), ValidityReason::BendAngleTooSmall);
+  Problem with_flat = problem;
+  with_flat.manufacturing.flat_extensions = true;
+  const ValidityReport allowed = check_validity(flat, realise(flat), SheetSpec::from(with_flat), env);
+  EXPECT_TRUE(allowed.valid()) << allowed.summary();
+
+  Problem square = problem;
+  square.manufacturing.restrict_to_right_angles();
+  Part slanted = make_base_part(problem.loads[0], 0, kT);
+  slanted.add_tab(0, 0, {0.01, 0.02, 0.018, 0, 0, -45 * kDeg});
+  EXPECT_TRUE(check_validity(slanted, realise(slanted), env).valid());
+  EXPECT_EQ(check_validity(slanted, realise(slanted), SheetSpec::from(square), env).first_reason(),
+            ValidityReason::BendAngleTooSmall);
+  EXPECT_TRUE(check_validity(down_tab(problem, 0.018), realise(down_tab(problem, 0.018)), SheetSpec::from(square), env).valid());
+  // The scene is the environment's in every grammar: through the plate is a collision.
+  const Part through = down_tab(problem, 0.03);
+  EXPECT_EQ(check_validity(through, realise(through), SheetSpec::from(square), env).first_reason(),
+            ValidityReason::ObstacleCollision);
+}
+
 // Rivet flange: A goes down 30 mm from edge 0 (plane y = 0); the flange F on
 // A's far edge is bent +90 deg, horizontal at z = -30 mm, reaching y = -25 mm,
 // x 10..30 mm, top normal +z. The floor (rivet area) lies t/2 below it at
