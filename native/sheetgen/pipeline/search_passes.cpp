@@ -304,21 +304,21 @@ LoadSearch search_passes(const Problem& scene, const Environment& env, int li, c
     if (merge_pass(first, std::move(webbed), scene)) s.library = std::move(pool);
   }
   // Still nothing: once more with flat extensions (a tab may continue its
-  // parent flat). Measured on the bay's data_recorder (docs/pipeline.md): the
-  // plain and web searches stay 26 % over its compliance limit, this one finds
-  // a valid part.
+  // parent flat), a plate cut larger where a bend alone cannot stiffen it.
+  // Measured (docs/pipeline.md step 4c): corner_obstacle's and slanted's
+  // parts come from this pass.
   if (s.finished && !first.ok && flat_fallback && !cancel_requested(progress)) {
-    Problem answer_scene = scene;
-    answer_scene.manufacturing.flat_extensions = true;
+    Problem flat_grammar = scene;
+    flat_grammar.manufacturing.flat_extensions = true;
     LoadOutcome flat = start;
     SegmentLibrary pool;
     if (progress) progress->flat_pass = true;
-    s.finished = search_pass(answer_scene, env, li, options, /*web_roots=*/false, progress, flat, pool);
+    s.finished = search_pass(flat_grammar, env, li, options, /*web_roots=*/false, progress, flat, pool);
     if (progress) progress->flat_pass = false;
     flat.web_pass_tried = first.web_pass_tried;
     flat.flat_pass_tried = first.flat_pass_tried = flat.flat_pass = true;
     if (merge_pass(first, std::move(flat), scene)) {
-      s.answer_scene = std::move(answer_scene);
+      s.answer_scene = std::move(flat_grammar);
       s.library = std::move(pool);
     }
   }

@@ -324,13 +324,19 @@ StructuralResult analyse_part(const Problem& problem, int load_index, const Plat
   return s;
 }
 
-PlateGeometry plate_geometry_from_json(const std::string& text, const std::string& source) {
-  nlohmann::json doc;
+namespace {
+// A result's part (or its tabs[]) as JSON; InputError naming `source` when it is not JSON.
+nlohmann::json parse_part_json(const std::string& text, const std::string& source) {
   try {
-    doc = nlohmann::json::parse(text);
+    return nlohmann::json::parse(text);
   } catch (const nlohmann::json::parse_error& e) {
     throw InputError(source, "", std::string("is not valid JSON (") + e.what() + ")");
   }
+}
+}  // namespace
+
+PlateGeometry plate_geometry_from_json(const std::string& text, const std::string& source) {
+  const nlohmann::json doc = parse_part_json(text, source);
   // Either a part object holding "tabs" (a result's parts[k]) or the bare array.
   const nlohmann::json& tabs_json = doc.is_object() && doc.contains("tabs") ? doc["tabs"] : doc;
   const JsonNode tabs(tabs_json, source, "tabs");
@@ -361,12 +367,7 @@ PlateGeometry plate_geometry_from_json(const std::string& text, const std::strin
 }
 
 std::optional<double> sheet_thickness_from_json(const std::string& text, const std::string& source) {
-  nlohmann::json doc;
-  try {
-    doc = nlohmann::json::parse(text);
-  } catch (const nlohmann::json::parse_error& e) {
-    throw InputError(source, "", std::string("is not valid JSON (") + e.what() + ")");
-  }
+  const nlohmann::json doc = parse_part_json(text, source);
   if (!doc.is_object() || !doc.contains("thickness_m")) return std::nullopt;
   const nlohmann::json& t = doc["thickness_m"];
   if (!t.is_number() || !(t.get<double>() > 0)) throw InputError(source, "thickness_m", "must be a positive number (m)");
@@ -374,12 +375,7 @@ std::optional<double> sheet_thickness_from_json(const std::string& text, const s
 }
 
 std::vector<SelfRivetTie> self_rivet_ties_from_json(const std::string& text, const std::string& source) {
-  nlohmann::json doc;
-  try {
-    doc = nlohmann::json::parse(text);
-  } catch (const nlohmann::json::parse_error& e) {
-    throw InputError(source, "", std::string("is not valid JSON (") + e.what() + ")");
-  }
+  const nlohmann::json doc = parse_part_json(text, source);
   std::vector<SelfRivetTie> ties;
   if (!doc.is_object() || !doc.contains("self_rivets")) return ties;
   const long long tab_count = doc.contains("tabs") && doc["tabs"].is_array() ? static_cast<long long>(doc["tabs"].size()) : 0;
