@@ -371,7 +371,7 @@ void right_angle_pass(const Problem& scene, const Environment& env, int li, cons
   square.manufacturing.restrict_to_right_angles();
   GenerateOptions bounded = options;
   if (best.ok) bounded.compose.cost_ceiling = best.part.cost;
-  LoadOutcome pass = start;
+  LoadOutcome pass = start;  // press_fallback as the round set it (search_load)
   SegmentLibrary pool;
   if (progress) progress->right_angle_pass = true;
   s.finished = search_pass(square, env, li, bounded, /*web_roots=*/false, progress, pass, pool);
@@ -381,7 +381,6 @@ void right_angle_pass(const Problem& scene, const Environment& env, int li, cons
   pass.seed_retries_tried = best.seed_retries_tried;
   pass.right_angle_pass_tried = best.right_angle_pass_tried = true;
   pass.right_angle_pass = true;
-  pass.press_fallback = best.press_fallback;  // the same round: with or without the press-brake check
   const bool keep = s.finished && pass.ok && (!best.ok || pass.part.cost < best.part.cost);
   if (add_pass(best, std::move(pass), keep)) {
     s.answer_scene = std::move(square);
