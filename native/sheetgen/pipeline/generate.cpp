@@ -11,6 +11,7 @@
 #include "sheetgen/env/environment.hpp"
 #include "sheetgen/fem/rivet_layout.hpp"
 #include "sheetgen/part/validity.hpp"
+#include "sheetgen/pipeline/load_environments.hpp"
 #include "sheetgen/pipeline/search_passes.hpp"
 #include "sheetgen/structure/part_model.hpp"
 
@@ -74,51 +75,6 @@ struct CancelRelay {
     done = true;
     if (thread.joinable()) thread.join();
   }
-};
-
-// The environments of the loads, one after another: the scene's fields are
-// built once; each load's environment adds the parts made since the previous
-// load (one small field each) to the previous load's.
-class LoadEnvironments {
- public:
-  // The next load's environment; nullptr when building it was cancelled.
-  const Environment* next(const Problem& problem, GenerateProgress* progress) {
-    try {
-      if (!env_) env_ = std::make_unique<Environment>(problem, options(progress));
-      else if (!new_parts_.empty()) env_ = std::make_unique<Environment>(*env_, new_parts_, options(progress));
-      if (!new_parts_.empty()) additions_.push_back(std::move(new_parts_));
-      new_parts_.clear();
-    } catch (const Cancelled&) {
-      return nullptr;
-    }
-    return env_.get();
-  }
-  // The current load's environment built again for another sheet of the
-  // problem (a thicker gauge): the scene's fields at that sheet's voxel and
-  // band, then the earlier parts added as next() added them. So a load
-  // searched at a gauge sees what a problem written at that thickness would
-  // show it (docs/pipeline.md "Thicker gauges"). nullptr when cancelled.
-  std::unique_ptr<Environment> at_sheet(const Problem& sheet, GenerateProgress* progress) const {
-    try {
-      auto env = std::make_unique<Environment>(sheet, options(progress));
-      for (const auto& parts : additions_) env = std::make_unique<Environment>(*env, parts, options(progress));
-      return env;
-    } catch (const Cancelled&) {
-      return nullptr;
-    }
-  }
-  // A finished part: an obstacle from the next load on.
-  void add_part(EnvironmentMesh part) { new_parts_.push_back(std::move(part)); }
-
- private:
-  static EnvironmentOptions options(GenerateProgress* progress) {
-    EnvironmentOptions eo;
-    if (progress) eo.cancel = &progress->cancel;
-    return eo;
-  }
-  std::vector<EnvironmentMesh> new_parts_;  // made since `env_` was built
-  std::vector<std::vector<EnvironmentMesh>> additions_;  // the parts `env_` added, one batch per rebuild
-  std::unique_ptr<Environment> env_;
 };
 
 bool cancel_requested(const GenerateProgress* progress) { return progress && progress->cancel.load(); }
@@ -242,7 +198,7 @@ void add_search_work(LoadOutcome& to, const LoadOutcome& from) {
 // environment of its sheet. When none gives one the answer stays the
 // problem's sheet's nearest candidate, and its reason names the gauges tried.
 // A base tab that is blocked at one gauge is blocked at every thicker one.
-bool search_gauges(const Problem& problem, const LoadEnvironments& environments, int li, const GenerateOptions& options,
+bool search_gauges(const Problem& problem, LoadEnvironments& environments, int li, const GenerateOptions& options,
                    SearchRound round, GenerateProgress* progress, LoadSearch& search,
                    std::unique_ptr<Environment>& gauge_env) {
   const std::vector<double>& gauges = problem.material.gauges;
@@ -251,7 +207,8 @@ bool search_gauges(const Problem& problem, const LoadEnvironments& environments,
   for (size_t k = 0; k < gauges.size() && !cancel_requested(progress); ++k) {
     const Stopwatch clock;
     if (progress) progress->stage = static_cast<int>(Stage::Environment);
-    std::unique_ptr<Environment> sheet = environments.at_sheet(at_gauge(problem, gauges[k]), progress);
+    environments.release();  // the problem's sheet's fields are not needed while a gauge's are
+    std::unique_ptr<Environment> sheet = environments.at_sheet(at_gauge(problem, gauges[k]));
     if (!sheet) return false;
     LoadSearch thick;
     thick.answer.load = first.load;
@@ -282,15 +239,27 @@ bool search_gauges(const Problem& problem, const LoadEnvironments& environments,
   return true;
 }
 
+// The problem's sheet's environment for a search of the current load, built
+// again when a gauge's search released it; the build's time counts as the
+// load's environment time. nullptr when cancelled.
+const Environment* problem_sheet(LoadEnvironments& environments, GenerateProgress* progress, LoadOutcome& out) {
+  const Stopwatch clock;
+  if (progress) progress->stage = static_cast<int>(Stage::Environment);
+  const Environment* env = environments.current();
+  out.environment_time += clock.elapsed();
+  return env;
+}
+
 // One round over the sheets: the problem's, then its thicker gauges while none
 // gave a valid part. Only a part that exists and is not strong, stiff or
 // stable enough is helped by thicker sheet: where no candidate was analysed
 // (no way to a rivet area, nothing the press brake bends) a thicker one fits
 // no better.
-bool search_round(const Problem& problem, const LoadEnvironments& environments, const Environment& env, int li,
-                  const GenerateOptions& options, SearchRound round, GenerateProgress* progress, LoadSearch& search,
+bool search_round(const Problem& problem, LoadEnvironments& environments, int li, const GenerateOptions& options,
+                  SearchRound round, GenerateProgress* progress, LoadSearch& search,
                   std::unique_ptr<Environment>& gauge_env, bool& blocked) {
-  if (!search_sheet(env, li, options, round, progress, search, blocked)) return false;
+  const Environment* env = problem_sheet(environments, progress, search.answer);
+  if (!env || !search_sheet(*env, li, options, round, progress, search, blocked)) return false;
   if (blocked || search.answer.ok || !search.answer.part.analysed) return true;
   return search_gauges(problem, environments, li, options, round, progress, search, gauge_env);
 }
@@ -300,11 +269,11 @@ bool search_round(const Problem& problem, const LoadEnvironments& environments, 
 // sheet, every sheet again without it: a shop takes the next gauge up before
 // it takes a part its standard tools cannot bend. The fallback's answer needs
 // other tools, and its plan names the bend and why. False when cancelled.
-bool search_load_sheets(const Problem& problem, const LoadEnvironments& environments, const Environment& env, int li,
+bool search_load_sheets(const Problem& problem, LoadEnvironments& environments, int li,
                         const GenerateOptions& options, bool flat_fallback, GenerateProgress* progress,
                         LoadSearch& search, std::unique_ptr<Environment>& gauge_env) {
   bool blocked = false;
-  if (!search_round(problem, environments, env, li, options, {flat_fallback, false}, progress, search, gauge_env, blocked))
+  if (!search_round(problem, environments, li, options, {flat_fallback, false}, progress, search, gauge_env, blocked))
     return false;
   const Manufacturing& mf = problem.manufacturing;
   if (blocked || search.answer.ok || !mf.press_brake_required || !mf.press_brake_fallback || cancel_requested(progress))
@@ -312,7 +281,7 @@ bool search_load_sheets(const Problem& problem, const LoadEnvironments& environm
   LoadSearch fallback;
   fallback.answer.load = search.answer.load;
   std::unique_ptr<Environment> fallback_env;
-  if (!search_round(problem, environments, env, li, options, {flat_fallback, true}, progress, fallback, fallback_env,
+  if (!search_round(problem, environments, li, options, {flat_fallback, true}, progress, fallback, fallback_env,
                     blocked))
     return false;
   if (keep_press_fallback(search, std::move(fallback), problem)) gauge_env = std::move(fallback_env);
@@ -327,7 +296,7 @@ GenerateResult generate(const Problem& input, const GenerateOptions& options, Ge
   GenerateResult result = result_settings(problem, options);
   if (progress) progress->loads = static_cast<int>(problem.loads.size());
   CancelRelay relay(progress);
-  LoadEnvironments environments;
+  LoadEnvironments environments(problem, progress);
   for (int li = 0; li < static_cast<int>(problem.loads.size()); ++li) {
     const Stopwatch load_clock;
     LoadSearch search;
@@ -337,7 +306,7 @@ GenerateResult generate(const Problem& input, const GenerateOptions& options, Ge
       progress->load = li;
       progress->stage = static_cast<int>(Stage::Environment);
     }
-    const Environment* env = environments.next(problem, progress);
+    const Environment* env = environments.next();
     if (env) first.environment_time = load_clock.elapsed();
     if (!env || cancel_requested(progress)) {
       result.cancelled = true;
@@ -345,13 +314,16 @@ GenerateResult generate(const Problem& input, const GenerateOptions& options, Ge
     }
     std::unique_ptr<Environment> gauge_env;  // the answer's sheet's, when thicker than the problem's
     const bool finished =
-        search_load_sheets(problem, environments, *env, li, options, result.flat_fallback, progress, search, gauge_env);
-    if (!finished || cancel_requested(progress)) {
+        search_load_sheets(problem, environments, li, options, result.flat_fallback, progress, search, gauge_env);
+    LoadOutcome& out = search.answer;
+    // The answer's sheet's environment: a gauge's, or the problem's (built
+    // again when a gauge's search released it).
+    const Environment* sheet_env =
+        !finished ? nullptr : gauge_env ? gauge_env.get() : problem_sheet(environments, progress, out);
+    if (!sheet_env || cancel_requested(progress)) {
       result.cancelled = true;
       break;
     }
-    const Environment& sheet_env = gauge_env ? *gauge_env : *env;
-    LoadOutcome& out = search.answer;
     if (out.ok && !out.part.segments.empty())
       environments.add_part(part_as_obstacle(out.load, out.realised, out.thickness));
     // Sizing after the part joined the environment as the search left it:
@@ -359,8 +331,8 @@ GenerateResult generate(const Problem& input, const GenerateOptions& options, Ge
     // same with and without sizing, and the sized part, which only loses
     // sheet, stays clear of everything they build (docs/pipeline.md "Sizing").
     if (out.ok && options.sizing) {
-      size_load_answer(sheet_env, li, options, search);
-      if (out.sizing_cuts > 0) plan_answer(search.answer_scene ? *search.answer_scene : sheet_env.problem(), li, out);
+      size_load_answer(*sheet_env, li, options, search);
+      if (out.sizing_cuts > 0) plan_answer(search.answer_scene ? *search.answer_scene : sheet_env->problem(), li, out);
     }
     out.total_time = load_clock.elapsed();
     result.loads.push_back(std::move(out));
