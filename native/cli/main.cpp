@@ -105,7 +105,8 @@ void print_queries(const sheetgen::Problem& p, const sheetgen::EnvironmentOption
   const auto start = std::chrono::steady_clock::now();
   sheetgen::Environment env(p, options);
   const double build = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  std::printf("environment: voxel %.4g mm, built in %.3f s\n", env.voxel_size() * 1e3, build);
+  std::printf("environment: voxel %.4g mm, built in %.3f s, distance fields %.1f MiB\n", env.voxel_size() * 1e3, build,
+              static_cast<double>(env.field_memory_bytes()) / (1024.0 * 1024.0));
   const double t = p.material.thickness;
   for (size_t li = 0; li < p.loads.size(); ++li) {
     const auto& l = p.loads[li];

@@ -300,7 +300,7 @@ DistanceField::DistanceField(const TriangleMesh& mesh, const DistanceFieldOption
   m.build_adjacency();
   m.build_leaf_table();
   m.stats.active_voxels = m.dist->activeVoxelCount();
-  m.stats.memory_bytes = m.dist->memUsage() + m.index->memUsage();
+  m.stats.memory_bytes = m.dist->memUsage() + m.index->memUsage() + m.leaf_table.capacity() * sizeof(Impl::LeafSlot);
   m.stats.build_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 

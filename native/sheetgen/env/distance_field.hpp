@@ -21,7 +21,7 @@ struct DistanceFieldOptions {
 
 struct DistanceFieldStats {
   size_t active_voxels = 0;
-  size_t memory_bytes = 0;    // distance grid + index grid
+  size_t memory_bytes = 0;    // distance grid + index grid + the leaf table
   double build_seconds = 0;
 };
 

@@ -209,6 +209,13 @@ Environment::~Environment() = default;
 
 double Environment::voxel_size() const { return obstacles_->voxel_size(); }
 
+size_t Environment::field_memory_bytes() const {
+  size_t bytes = obstacles_->stats().memory_bytes + all_rivet_areas_->stats().memory_bytes;
+  for (const auto& f : rivet_fields_) bytes += f->stats().memory_bytes;
+  for (const auto& f : added_fields_) bytes += f->stats().memory_bytes;
+  return bytes;
+}
+
 const DistanceField& Environment::obstacle_field() const { return *obstacles_; }
 
 double Environment::clearance(const Vec3& p) const { return distance_excluding(p, AllowedContacts{}); }

@@ -67,6 +67,9 @@ class Environment {
 
   const Problem& problem() const { return problem_; }
   double voxel_size() const;  // m, of the clearance field
+  // Bytes held by the distance fields' grids (obstacles, each rivet area, their
+  // union, the added obstacles): the bulk of an environment's memory.
+  size_t field_memory_bytes() const;
 
   // Distance from p to the nearest obstacle of any kind (environment faces,
   // rivet areas, load boxes), m; negative only inside a load box.

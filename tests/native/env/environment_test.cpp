@@ -59,6 +59,9 @@ TEST(Environment, AddedObstaclesAnswerLikeAnEnvironmentBuiltWithThem) {
   EXPECT_EQ(grown.rivet_area_of_face(0, p.rivet_areas[0].faces[0]), 0);
   const double h = grown.voxel_size();
   EXPECT_EQ(h, scratch.voxel_size());
+  // The added field's grids come on top of the shared ones.
+  EXPECT_GT(base.field_memory_bytes(), 0u);
+  EXPECT_GT(grown.field_memory_bytes(), base.field_memory_bytes());
 
   // Exact distance to every obstacle but the rivet area, and to the box.
   std::vector<std::array<Vec3, 3>> tris;
