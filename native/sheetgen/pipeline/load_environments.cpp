@@ -20,7 +20,6 @@ const Environment* LoadEnvironments::next() {
   try {
     env_ = std::make_unique<Environment>(*env_, new_parts_, options());
   } catch (const Cancelled&) {
-    env_.reset();
     return nullptr;
   }
   additions_.push_back(std::move(new_parts_));
