@@ -98,15 +98,6 @@ void add_in_place(double* values, NodeBlockPattern& pattern, const DofMap& map, 
   for_each_lower_term<N>(map, dofs, A, [&](int ia, int ib, double v) { values[pattern.position(ia, ib)] += v; });
 }
 
-std::uint64_t fnv1a(const void* data, size_t bytes, std::uint64_t h) {
-  const auto* p = static_cast<const unsigned char*>(data);
-  for (size_t i = 0; i < bytes; ++i) {
-    h ^= p[i];
-    h *= 1099511628211ull;
-  }
-  return h;
-}
-
 }  // namespace
 
 SparseMatrix assemble_elements_by_triplets(const ShellModel& m, const DofMap& map,
@@ -187,18 +178,6 @@ std::vector<Vector6d> expand_displacements(const DofMap& map, const Eigen::Vecto
 
 Eigen::VectorXd symmetric_product(const SparseMatrix& A_lower, const Eigen::VectorXd& x) {
   return A_lower.selfadjointView<Eigen::Lower>() * x;
-}
-
-std::uint64_t pattern_hash(const SparseMatrix& K) {
-  std::uint64_t h = 1469598103934665603ull;
-  const Eigen::Index rows = K.rows();
-  h = fnv1a(&rows, sizeof rows, h);
-  h = fnv1a(K.outerIndexPtr(), sizeof(int) * (K.cols() + 1), h);
-  return fnv1a(K.innerIndexPtr(), sizeof(int) * K.nonZeros(), h);
-}
-
-std::uint64_t value_hash(const SparseMatrix& K) {
-  return fnv1a(K.valuePtr(), sizeof(double) * K.nonZeros(), pattern_hash(K));
 }
 
 }  // namespace sheetgen

@@ -4,7 +4,6 @@
 // and load vectors through it. Statics, buckling and vibration share it.
 #include <Eigen/SparseCore>
 #include <array>
-#include <cstdint>
 #include <functional>
 #include <vector>
 
@@ -70,9 +69,5 @@ std::vector<Vector6d> expand_displacements(const DofMap& map, const Eigen::Vecto
 
 // y = A x for the lower triangle `A_lower` of a symmetric matrix.
 Eigen::VectorXd symmetric_product(const SparseMatrix& A_lower, const Eigen::VectorXd& x);
-
-// FNV-1a over a sparse matrix's index arrays (its pattern) or values.
-std::uint64_t pattern_hash(const SparseMatrix& K);
-std::uint64_t value_hash(const SparseMatrix& K);
 
 }  // namespace sheetgen

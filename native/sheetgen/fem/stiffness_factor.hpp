@@ -1,11 +1,10 @@
 #pragma once
 // The factorisation of the reduced stiffness K_hat (internal to the fem area):
 // the one door to CHOLMOD and Eigen's sparse LDL^T. Keeps the symbolic
-// analysis while the sparsity pattern repeats (composition solves hundreds of
-// similar candidates) and the numeric factor while K itself repeats (statics,
-// buckling and vibration of one part share it).
+// analysis while the sparsity pattern repeats (the sizing of a part solves
+// many models on one mesh). ShellSolver keeps the whole factor while the
+// stiffness inputs repeat (statics, buckling and vibration of one part).
 #include <Eigen/Core>
-#include <cstdint>
 #include <memory>
 
 #include "sheetgen/fem/shell_assembly.hpp"
@@ -19,16 +18,17 @@ class StiffnessFactor {
   ~StiffnessFactor();
 
   // Factors K (lower triangle). Reuses the symbolic analysis when the pattern
-  // repeats and skips the numeric factorisation when K's values repeat too.
+  // (the index arrays, compared exactly) repeats.
   // Throws FemError when K is singular: a pivot below singular_pivot_ratio
   // times its diagonal entry is a rigid-body mode or mechanism.
   struct Outcome {
     bool pattern_reused = false;
-    bool factor_reused = false;
   };
   Outcome factorise(const SparseMatrix& K, ShellSolverBackend backend, double singular_pivot_ratio);
 
-  // K^-1 F for each column of F.
+  // K^-1 F for each column of F (each load case). With the LDL^T backend the
+  // answer is Eigen's SimplicialLDLT::solve to the last bit, with the factor
+  // read once for all the columns rather than once per column.
   Eigen::MatrixXd solve(const Eigen::MatrixXd& F) const;
 
   // With K = W W^T (W = P^T L D^1/2 of the LDL^T backend), in place:
