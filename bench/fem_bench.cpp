@@ -5,9 +5,12 @@
 //   BM_FemSolveWarm  - one ShellSolver, same pattern: the symbolic analysis is reused;
 //   BM_FemMesh       - the plate mesher on the same polygons;
 //   BM_Ccx           - CalculiX (ccx -i) on the exported deck of the same model, wall time,
-//                      with counter speedup = ccx time / our cold time.
+//                      with counter speedup = ccx time / our cold time;
+//   BM_Ordering      - the fill-reducing ordering of K (0: Eigen's AMDOrdering, 1: SymmetricAmdOrdering);
+//   BM_SixCaseSolve  - six load cases on one LDL^T factor (0: Eigen's solve, 1: StiffnessFactor::solve).
 // Arguments: {mesh (0: h = 2.5 mm, 1: 1.25 mm; BM_FemSolveCold also 2: 0.625 mm, 3: 0.42 mm),
-// backend (0: CHOLMOD, 1: Eigen LDLT, the default)}.
+// backend (0: CHOLMOD, 1: Eigen LDLT, the default)}; BM_Ordering and BM_SixCaseSolve {mesh, variant}.
+#include <Eigen/SparseCholesky>
 #include <benchmark/benchmark.h>
 #include <stdlib.h>
 
@@ -18,6 +21,9 @@
 // The bracket builders are shared with the CalculiX validation test.
 #include "../tests/native/fem/fem_brackets.hpp"
 #include "sheetgen/fem/ccx_export.hpp"
+#include "sheetgen/fem/shell_assembly.hpp"
+#include "sheetgen/fem/stiffness_factor.hpp"
+#include "sheetgen/fem/symmetric_amd_ordering.hpp"
 
 namespace {
 
@@ -101,8 +107,44 @@ void BM_Ccx(benchmark::State& state) {
   }
 }
 
+SparseMatrix bracket_stiffness(int mesh) {
+  const ShellModel m = test::three_tab_bracket_model(kElementSize[mesh]);
+  return assemble_stiffness(m, build_dof_map(m), ShellElementOptions{});
+}
+
+void BM_Ordering(benchmark::State& state) {
+  const SparseMatrix K = bracket_stiffness(static_cast<int>(state.range(0)));
+  SparseMatrix full;
+  full = K.selfadjointView<Eigen::Lower>();
+  SymmetricAmdOrdering::PermutationType perm;
+  for (auto _ : state) {
+    if (state.range(1) == 0) {
+      Eigen::AMDOrdering<int>()(full, perm);
+    } else {
+      SymmetricAmdOrdering()(full, perm);
+    }
+    benchmark::DoNotOptimize(perm.indices().data());
+  }
+  state.counters["dofs"] = static_cast<double>(K.rows());
+}
+
+void BM_SixCaseSolve(benchmark::State& state) {
+  const SparseMatrix K = bracket_stiffness(static_cast<int>(state.range(0)));
+  const Eigen::MatrixXd F = Eigen::MatrixXd::Random(K.rows(), 6);
+  StiffnessFactor ours;
+  ours.factorise(K, ShellSolverBackend::kEigenSimplicialLdlt, 1e-12);
+  const Eigen::SimplicialLDLT<SparseMatrix, Eigen::Lower, Eigen::AMDOrdering<int>> eigen(K);
+  for (auto _ : state) {
+    Eigen::MatrixXd U = state.range(1) == 0 ? Eigen::MatrixXd(eigen.solve(F)) : ours.solve(F);
+    benchmark::DoNotOptimize(U.data());
+  }
+  state.counters["dofs"] = static_cast<double>(K.rows());
+}
+
 }  // namespace
 
+BENCHMARK(BM_Ordering)->ArgsProduct({{0, 1, 2}, {0, 1}})->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_SixCaseSolve)->ArgsProduct({{0, 1, 2}, {0, 1}})->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_FemSolveCold)->ArgsProduct({{0, 1, 2, 3}, {0, 1}})->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_FemSolveWarm)->ArgsProduct({{0, 1}, {0, 1}})->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_FemMesh)->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond);

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "sheetgen/fem/fem_error.hpp"
+#include "sheetgen/fem/symmetric_amd_ordering.hpp"
 
 namespace sheetgen {
 namespace {
@@ -46,7 +47,7 @@ class CholmodLlt : public Eigen::CholmodSupernodalLLT<SparseMatrix, Eigen::Lower
   }
 };
 
-using EigenLdlt = Eigen::SimplicialLDLT<SparseMatrix, Eigen::Lower, Eigen::AMDOrdering<int>>;
+using EigenLdlt = Eigen::SimplicialLDLT<SparseMatrix, Eigen::Lower, SymmetricAmdOrdering>;
 
 // Smallest D_jj / K_jj over all columns, in the factor's (permuted) order.
 double min_pivot_ratio(const EigenLdlt& ldlt, const Eigen::VectorXd& diag) {

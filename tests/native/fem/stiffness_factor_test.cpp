@@ -11,6 +11,7 @@
 
 #include "fem_brackets.hpp"
 #include "sheetgen/fem/shell_assembly.hpp"
+#include "sheetgen/fem/symmetric_amd_ordering.hpp"
 
 namespace sheetgen {
 namespace {
@@ -95,6 +96,26 @@ TEST(StiffnessFactor, ReusesTheAnalysisOnlyForTheSamePattern) {
   ASSERT_EQ(moved.nonZeros(), a.K.nonZeros());
   EXPECT_FALSE(factor.factorise(moved, ShellSolverBackend::kEigenSimplicialLdlt, 1e-12).pattern_reused);
   EXPECT_EQ(factor.symbolic_analyses(), 2);
+}
+
+// SimplicialLDLT passes its ordering both triangles of K; on that matrix our
+// ordering and Eigen's AMDOrdering give the same elimination order, entry for
+// entry (a different one would give other factors, and other rounding).
+TEST(SymmetricAmdOrdering, GivesAmdOrderingsPermutation) {
+  for (double h : {4e-3, 2.5e-3}) {
+    const ShellModel m = test::three_tab_bracket_model(h);
+    const SparseMatrix K = assemble_stiffness(m, build_dof_map(m), ShellElementOptions{});
+    SparseMatrix full;
+    full = K.selfadjointView<Eigen::Lower>();  // as SimplicialCholeskyBase::ordering builds it
+    SymmetricAmdOrdering::PermutationType ours, eigen;
+    SymmetricAmdOrdering()(full, ours);
+    Eigen::AMDOrdering<int>()(full, eigen);
+    ASSERT_EQ(ours.size(), K.rows());
+    EXPECT_EQ(ours.indices(), eigen.indices());
+    int moved = 0;
+    for (int i = 0; i < ours.size(); ++i) moved += ours.indices()(i) != i;
+    EXPECT_GT(moved, ours.size() / 2);  // an ordering, not the identity
+  }
 }
 
 }  // namespace
