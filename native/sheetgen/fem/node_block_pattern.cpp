@@ -20,7 +20,51 @@ bool NodeBlockPattern::build(const ShellModel& m, const DofMap& map, const std::
   has_diagonal_.assign(n_nodes, 0);
   if (!collect_neighbours(m, map, block_nodes)) return false;
   lay_out_columns(map.reduced);
+  find_plain_nodes(map, n_nodes);
   return true;
+}
+
+void NodeBlockPattern::find_plain_nodes(const DofMap& map, int n_nodes) {
+  plain_.assign(n_nodes, 1);
+  reduced_of_.assign(6 * static_cast<size_t>(n_nodes), -1);
+  for (int i = 0; i < n_nodes; ++i)
+    for (int d = 0; d < 6; ++d) {
+      const int dof = 6 * i + d, begin = map.start[dof], end = map.start[dof + 1];
+      if (end == begin) continue;  // fixed
+      if (end - begin > 1 || owner_[map.index[begin]] != i || map.coef[begin] != 1.0) plain_[i] = 0;
+      reduced_of_[dof] = map.index[begin];
+    }
+}
+
+// The row offset of node p's range in the columns of node q (q < p, both
+// with reduced DOFs and neighbours in the pattern).
+int NodeBlockPattern::pair_offset(int p, int q) const {
+  const auto beg = adj_.begin() + adj_start_[q];
+  const auto at = std::lower_bound(beg, adj_.begin() + adj_start_[q + 1], p);
+  return adj_rows_[adj_start_[q] + static_cast<int>(at - beg)];
+}
+
+void NodeBlockPattern::add_plain_element(double* values, const std::array<int, 3>& t, const Matrix18d& A) const {
+  for (int lb = 0; lb < 3; ++lb) {    // the column's node
+    const int q = t[lb];
+    if (count_[q] == 0) continue;
+    for (int la = 0; la < 3; ++la) {  // the row's node
+      const int p = t[la];
+      if (count_[p] == 0 || p < q) continue;  // lower triangle: p's range is not before q's
+      const int offset = p == q ? 0 : pair_offset(p, q) - first_[p];
+      for (int db = 0; db < 6; ++db) {
+        const int ib = reduced_of_[6 * q + db];
+        if (ib < 0) continue;
+        // Column ib: its diagonal block's rest from ib, then q's neighbours' ranges.
+        double* column = values + col_start_[ib] + (p == q ? -ib : first_[q] + count_[q] - ib + offset);
+        for (int da = 0; da < 6; ++da) {
+          const int ia = reduced_of_[6 * p + da];
+          if (ia < 0 || ia < ib) continue;
+          column[ia] += A(6 * la + da, 6 * lb + db);
+        }
+      }
+    }
+  }
 }
 
 // Node-blocked: the entries of every node's six DOFs name, for each node

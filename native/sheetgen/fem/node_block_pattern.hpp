@@ -9,6 +9,7 @@
 // time goes"). Here the pattern comes from the node graph (a few pairs per
 // element) and the values are added in place, in the triplets' order, so the
 // matrix is the same to the last bit.
+#include <array>
 #include <vector>
 
 #include "sheetgen/fem/shell_assembly.hpp"
@@ -44,9 +45,20 @@ class NodeBlockPattern {
     return col_start_[ib] + (first_[q] + count_[q] - ib) + block_offset_[local_[p]][local_[q]] + (ia - first_[p]);
   }
 
+  // A triangle whose three nodes are plain: each full DOF names at most one
+  // reduced DOF, its node's own, with coefficient 1 (no rigid-link slave).
+  bool plain(const std::array<int, 3>& t) const { return plain_[t[0]] && plain_[t[1]] && plain_[t[2]]; }
+  // Adds a plain triangle's lower-triangle terms into `values`, node pair by
+  // node pair: what add_in_place() adds through begin_block() and position(),
+  // term for term (1 * 1 * A(a, b) is A(a, b), and a plain triangle puts one
+  // term on each entry), without looking each term's DOFs up in the map.
+  void add_plain_element(double* values, const std::array<int, 3>& t, const Matrix18d& A) const;
+
  private:
   static constexpr int kMaxOwners = 8;  // of one element; more falls back to triplets
   bool owners_cover_their_dofs(const DofMap& map, int n_nodes);
+  void find_plain_nodes(const DofMap& map, int n_nodes);
+  int pair_offset(int p, int q) const;
   int element_owners(const DofMap& map, const int* full_dofs, int count, int* owners) const;
   bool collect_neighbours(const ShellModel& m, const DofMap& map, const std::vector<int>& block_nodes);
   void lay_out_columns(int reduced);
@@ -58,6 +70,8 @@ class NodeBlockPattern {
   std::vector<int> adj_;            // later neighbours of each node, ascending
   std::vector<int> adj_rows_;       // rows of the neighbours before it, in the node's columns
   std::vector<int> col_start_, rows_;
+  std::vector<char> plain_;         // node -> plain (see plain())
+  std::vector<int> reduced_of_;     // full DOF of a plain node -> its reduced DOF, -1 when fixed
   std::vector<std::pair<int, int>> pairs_;  // (node, later neighbour) before sorting
   // The last begin_block(): node -> index among its owners, and their offsets.
   std::vector<int> local_;

@@ -138,8 +138,14 @@ SparseMatrix assemble_elements(const ShellModel& m, const DofMap& map,
   double* values = A.valuePtr();
   std::fill(values, values + pattern.nonzeros(), -0.0);
   const int n_elem = static_cast<int>(m.triangles.size());
-  for (int e = 0; e < n_elem; ++e)
-    add_in_place<18>(values, pattern, map, element_dofs(m.triangles[e]), element_matrix(e));
+  for (int e = 0; e < n_elem; ++e) {
+    const std::array<int, 3>& t = m.triangles[e];
+    if (pattern.plain(t)) {
+      pattern.add_plain_element(values, t, element_matrix(e));
+    } else {
+      add_in_place<18>(values, pattern, map, element_dofs(t), element_matrix(e));
+    }
+  }
   for (const NodalBlock& b : nodal_blocks) add_in_place<6>(values, pattern, map, node_dofs(b.node), b.matrix);
   return A;
 }
