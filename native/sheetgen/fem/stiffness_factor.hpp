@@ -1,9 +1,9 @@
 #pragma once
 // The factorisation of the reduced stiffness K_hat (internal to the fem area):
 // the one door to CHOLMOD and Eigen's sparse LDL^T. Keeps the symbolic
-// analysis while the sparsity pattern repeats (the sizing of a part solves
-// many models on one mesh). ShellSolver keeps the whole factor while the
-// stiffness inputs repeat (statics, buckling and vibration of one part).
+// analysis while the sparsity pattern repeats (the same mesh with other
+// values, e.g. another thickness). ShellSolver keeps the whole factor while
+// the stiffness inputs repeat (statics, buckling and vibration of one part).
 #include <Eigen/Core>
 #include <memory>
 
