@@ -1,6 +1,8 @@
 #include "sheetgen/compose/candidate.hpp"
 
 #include <algorithm>
+#include <optional>
+#include <string>
 #include <utility>
 
 #include "sheetgen/env/environment.hpp"
@@ -33,7 +35,7 @@ double part_default_element_size(const Part& part, double thickness) {
 }
 
 Candidate evaluate_part(const Problem& problem, const Environment& env, int load_index, Candidate c, double element_size,
-                        ShellSolver* solver, double cost_bound) {
+                        ShellSolver* solver, double cost_bound, AnalysisCache* cache) {
   c.geometry_ok = false;
   c.analysed = false;
   c.over_cost_bound = false;
@@ -75,13 +77,13 @@ Candidate evaluate_part(const Problem& problem, const Environment& env, int load
     }
   }
   c.geometry_ok = true;
-  analyse_candidate(problem, load_index, c, element_size, solver);
+  analyse_candidate(problem, load_index, c, element_size, solver, cache);
   return c;
 }
 
-void analyse_candidate(const Problem& problem, int load_index, Candidate& c, double element_size, ShellSolver* solver) {
-  c.analysed = false;
-  c.fem_error.clear();
+namespace {
+// The candidate's FEM on its own: sets analysed and fem, or fem_error.
+void analyse_fresh(const Problem& problem, int load_index, Candidate& c, double element_size, ShellSolver* solver) {
   try {
     PartModelOptions mo;
     mo.element_size = element_size;
@@ -96,15 +98,35 @@ void analyse_candidate(const Problem& problem, int load_index, Candidate& c, dou
     c.fem_error = e.what();
   }
 }
+}  // namespace
+
+void analyse_candidate(const Problem& problem, int load_index, Candidate& c, double element_size, ShellSolver* solver,
+                       AnalysisCache* cache) {
+  c.analysed = false;
+  c.fem_error.clear();
+  std::string key;
+  if (cache) {
+    key = AnalysisCache::key(problem, load_index, c, element_size);
+    if (std::optional<AnalysisCache::Analysis> known = cache->find(key)) {
+      c.analysed = known->analysed;
+      c.fem = std::move(known->fem);
+      c.fem_error = std::move(known->fem_error);
+      return;
+    }
+  }
+  analyse_fresh(problem, load_index, c, element_size, solver);
+  if (cache) cache->insert(key, {c.analysed, c.fem, c.fem_error});
+}
+
 
 Candidate evaluate_candidate(const Problem& problem, const Environment& env, int load_index, const Part& base,
                              const SegmentLibrary& library, std::vector<int> segments, double element_size,
-                             ShellSolver* solver, double cost_bound) {
+                             ShellSolver* solver, double cost_bound, AnalysisCache* cache) {
   Candidate c;
   std::sort(segments.begin(), segments.end());
   c.segments = segments;
   c.part = assemble_part(base, library, segments);
-  return evaluate_part(problem, env, load_index, std::move(c), element_size, solver, cost_bound);
+  return evaluate_part(problem, env, load_index, std::move(c), element_size, solver, cost_bound, cache);
 }
 
 }  // namespace sheetgen

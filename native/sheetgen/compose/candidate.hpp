@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "sheetgen/compose/analysis_cache.hpp"
 #include "sheetgen/core/problem.hpp"
 #include "sheetgen/discovery/segment_library.hpp"
 #include "sheetgen/part/part.hpp"
@@ -44,22 +45,25 @@ struct Candidate {
 double part_default_element_size(const Part& part, double thickness);
 
 // Evaluates one subset (exposed for tests): assembly, validity, flat pattern,
-// bend sequence, FEM. element_size <= 0: the default mesh.
+// bend sequence, FEM. element_size <= 0: the default mesh. With a cache, an
+// analysis the load's searches have already made is taken from it.
 Candidate evaluate_candidate(const Problem& problem, const Environment& env, int load_index, const Part& base,
                              const SegmentLibrary& library, std::vector<int> segments, double element_size,
                              ShellSolver* solver = nullptr,
-                             double cost_bound = std::numeric_limits<double>::infinity());
+                             double cost_bound = std::numeric_limits<double>::infinity(),
+                             AnalysisCache* cache = nullptr);
 
 // The FEM of a candidate whose geometry passed: sets analysed and fem, or
 // fem_error when the model cannot be solved. element_size <= 0: the default mesh.
 void analyse_candidate(const Problem& problem, int load_index, Candidate& candidate, double element_size,
-                       ShellSolver* solver = nullptr);
+                       ShellSolver* solver = nullptr, AnalysisCache* cache = nullptr);
 
 // Re-evaluates a candidate's own part (with its self-rivets), e.g. at the
 // default mesh for the final check. A part whose cost (m^2) is at least
 // cost_bound is checked but not analysed (over_cost_bound).
 Candidate evaluate_part(const Problem& problem, const Environment& env, int load_index, Candidate candidate,
                         double element_size, ShellSolver* solver = nullptr,
-                        double cost_bound = std::numeric_limits<double>::infinity());
+                        double cost_bound = std::numeric_limits<double>::infinity(),
+                        AnalysisCache* cache = nullptr);
 
 }  // namespace sheetgen

@@ -239,7 +239,7 @@ std::vector<int> BeamSearch::evaluate(const std::vector<std::vector<int>>& subse
       const Part probe = assemble_part(base_, library_, subsets[i]);
       const double h = screening_ ? options_.screen_element_factor * default_size(probe) : search_size(probe);
       out[i] = evaluate_candidate(problem_, env_, load_index_, base_, library_, subsets[i], h,
-                                  &solvers_.local(), bound);
+                                  &solvers_.local(), bound, options_.analyses);
       if (progress_) ++progress_->evaluated;
     });
   });
@@ -286,7 +286,7 @@ void BeamSearch::reanalyse(std::vector<Candidate>& batch) {
     tbb::parallel_for(size_t(0), again.size(), [&](size_t k) {
       if (cancel_requested()) return;
       Candidate& c = batch[again[k]];
-      analyse_candidate(problem_, load_index_, c, search_size(c.part), &solvers_.local());
+      analyse_candidate(problem_, load_index_, c, search_size(c.part), &solvers_.local(), options_.analyses);
     });
   });
 }
@@ -367,7 +367,8 @@ void BeamSearch::evaluate_variants(int level, std::vector<Candidate>& variants, 
     tbb::parallel_for(size_t(0), variants.size(), [&](size_t k) {
       if (cancel_requested()) return;
       const double h = search_size(variants[k].part);
-      checked[k] = evaluate_part(problem_, env_, load_index_, variants[k], h, &solvers_.local(), bound);
+      checked[k] = evaluate_part(problem_, env_, load_index_, variants[k], h, &solvers_.local(), bound,
+                                 options_.analyses);
       if (progress_) ++progress_->evaluated;
     });
   });

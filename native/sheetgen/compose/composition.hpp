@@ -41,6 +41,10 @@ struct ComposeOptions {
   double screen_element_factor = 3.0;
   int screen_keep = 2;
   int threads = 0;                 // 0 = all cores; results do not depend on it
+  // The analyses of the load's earlier searches, shared with this one and
+  // added to (compose/analysis_cache.hpp); nullptr: every candidate is analysed.
+  // Results do not depend on it.
+  AnalysisCache* analyses = nullptr;
 };
 
 struct ComposeHistoryRow {

@@ -313,9 +313,14 @@ GenerateResult generate(const Problem& input, const GenerateOptions& options, Ge
       break;
     }
     std::unique_ptr<Environment> gauge_env;  // the answer's sheet's, when thicker than the problem's
+    // Every pass, sheet and round of this load shares its analyses.
+    AnalysisCache analyses;
+    GenerateOptions load_options = options;
+    load_options.compose.analyses = &analyses;
     const bool finished =
-        search_load_sheets(problem, environments, li, options, result.flat_fallback, progress, search, gauge_env);
+        search_load_sheets(problem, environments, li, load_options, result.flat_fallback, progress, search, gauge_env);
     LoadOutcome& out = search.answer;
+    out.analyses_reused = analyses.hits();
     // The answer's sheet's environment: a gauge's, or the problem's (built
     // again when a gauge's search released it).
     const Environment* sheet_env =
@@ -331,7 +336,7 @@ GenerateResult generate(const Problem& input, const GenerateOptions& options, Ge
     // same with and without sizing, and the sized part, which only loses
     // sheet, stays clear of everything they build (docs/pipeline.md "Sizing").
     if (out.ok && options.sizing) {
-      size_load_answer(*sheet_env, li, options, search);
+      size_load_answer(*sheet_env, li, load_options, search);
       if (out.sizing_cuts > 0) plan_answer(search.answer_scene ? *search.answer_scene : sheet_env->problem(), li, out);
     }
     out.total_time = load_clock.elapsed();

@@ -81,6 +81,7 @@ struct LoadOutcome {
   int skipped_by_cost = 0;           // candidates the cost bound left unanalysed (ComposeOptions::kept_valid)
   int screen_fem_calls = 0;          // analyses on the composition's screening mesh (not in fem_calls)
   int screened_out = 0;              // candidates analysed on the screening mesh only
+  int analyses_reused = 0;           // analyses (fem_calls and screening) taken from an earlier identical one of the load
   int composition_reruns = 0;        // 1: every kept part failed the final check, searched again without the bound
   bool web_pass_tried = false;       // the first search found no valid part, a second ran with web roots
   bool web_roots = false;            // the answer comes from that second search

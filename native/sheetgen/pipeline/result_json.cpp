@@ -101,6 +101,7 @@ void add_search_fields(json& p, const LoadOutcome& o) {
   p["skipped_by_cost"] = o.skipped_by_cost;
   p["screen_fem_calls"] = o.screen_fem_calls;
   p["screened_out"] = o.screened_out;
+  p["analyses_reused"] = o.analyses_reused;
   p["composition_reruns"] = o.composition_reruns;
   p["web_pass_tried"] = o.web_pass_tried;
   p["web_roots"] = o.web_roots;

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cstdio>
 #include <cstdlib>
+#include <limits>
 #include <optional>
 #include <set>
 #include <string>
@@ -16,6 +17,8 @@
 namespace sheetgen {
 
 namespace {
+
+constexpr double kNoCostBound = std::numeric_limits<double>::infinity();
 
 bool cancel_requested(const GenerateProgress* progress) { return progress && progress->cancel.load(); }
 
@@ -56,6 +59,7 @@ struct FinalCheck {
   const Environment& env;
   int load_index;
   bool web_roots;    // for the debug line
+  AnalysisCache* analyses;  // the load's analyses so far (ComposeOptions::analyses)
   std::set<std::pair<std::vector<int>, double>> failed;  // (segments, cost) of parts rejected
   std::string reason;  // why the cheapest analysed part failed, when one did
 
@@ -64,7 +68,7 @@ struct FinalCheck {
     for (const Candidate& c : valid) {
       if (failed.count({c.segments, c.cost})) continue;
       const Stopwatch tc;
-      Candidate checked = evaluate_part(scene, env, load_index, c, 0.0);
+      Candidate checked = evaluate_part(scene, env, load_index, c, 0.0, nullptr, kNoCostBound, analyses);
       ++out.fem_calls;
       if (std::getenv("SHEETGEN_COMPOSE_DEBUG"))
         std::fprintf(stderr, "[final check] %s%s: %s in %.2f s\n", out.load.c_str(), web_roots ? " (web roots)" : "",
@@ -92,7 +96,7 @@ bool compose_and_check(const Problem& scene, const Environment& env, int li, con
   const Stopwatch clock;
   ComposeResult composed = compose_part(scene, env, li, base, library, copt, compose_progress(progress));
   if (composed.cancelled || cancel_requested(progress)) return false;
-  FinalCheck check{scene, env, li, web_roots, {}, {}};
+  FinalCheck check{scene, env, li, web_roots, copt.analyses, {}, {}};
   check.run(composed.valid, out);
   out.skipped_by_cost = composed.skipped_by_cost;
   out.screen_fem_calls = composed.screen_fem_calls;

@@ -1,5 +1,6 @@
-// The composition's two shortcuts (docs/pipeline.md "Cost bound", "Screening")
-// against the plain beam search on the corner scene's library.
+// The composition's shortcuts (docs/pipeline.md "Cost bound", "Screening",
+// "Analyses shared between passes") against the plain beam search on the
+// corner scene's library.
 // * The cost bound (ComposeOptions::kept_valid) only leaves out work: the same
 //   best part, the same beam (so the same candidates and history) and the same
 //   cheapest valid parts, and every candidate it did not analyse is one the
@@ -7,8 +8,12 @@
 // * Screening re-analyses on the search mesh what could matter: with every
 //   candidate kept it is the plain search; with the default it leaves some out,
 //   and every valid part it reports carries its search-mesh analysis.
+// * The analyses cache gives the search it would make without it, bit for bit,
+//   and a second search of the same library analyses nothing anew; its key
+//   changes with every input of an analysis.
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <cstdio>
 #include <string>
 
@@ -162,6 +167,77 @@ TEST(Screening, ValidPartsCarryTheirSearchMeshAnalysis) {
     EXPECT_EQ(again.fem.margin_of_safety, v.fem.margin_of_safety);
     EXPECT_FALSE(v.screened_out);
   }
+}
+
+// The same search, answer for answer and bit for bit.
+void expect_same_search(const ComposeResult& a, const ComposeResult& b) {
+  ASSERT_EQ(a.found, b.found);
+  EXPECT_EQ(a.candidates, b.candidates);
+  EXPECT_EQ(a.fem_calls, b.fem_calls);
+  EXPECT_EQ(a.screen_fem_calls, b.screen_fem_calls);
+  ASSERT_EQ(a.valid.size(), b.valid.size());
+  for (size_t k = 0; k < a.valid.size(); ++k) {
+    const StructuralResult &fa = a.valid[k].fem, &fb = b.valid[k].fem;
+    EXPECT_EQ(a.valid[k].segments, b.valid[k].segments);
+    EXPECT_EQ(a.valid[k].cost, b.valid[k].cost);
+    EXPECT_EQ(fa.compliance, fb.compliance);
+    EXPECT_EQ(fa.margin_of_safety, fb.margin_of_safety);
+    EXPECT_EQ(fa.envelope.buckling_factor, fb.envelope.buckling_factor);
+    EXPECT_EQ(fa.envelope.frequencies_hz, fb.envelope.frequencies_hz);
+  }
+}
+
+TEST(AnalysisCache, GivesTheSearchWithoutItAndASecondSearchAnalysesNothingAnew) {
+  const CornerLibrary& lib = CornerLibrary::get();
+  const ComposeResult ref = lib.compose(ComposeOptions{});
+  AnalysisCache cache;
+  ComposeOptions o;
+  o.analyses = &cache;
+  const ComposeResult first = lib.compose(o);
+  expect_same_search(first, ref);
+  const size_t kept = cache.size();
+  std::printf("analyses cache: %zu analyses kept, %d reused by the first search\n", kept, cache.hits());
+  // Every analysis of the first search: the screening ones and those on the search mesh.
+  EXPECT_EQ(static_cast<int>(kept) + cache.hits(), ref.screen_fem_calls + ref.fem_calls);
+  const int hits_before = cache.hits();
+  const ComposeResult second = lib.compose(o);
+  expect_same_search(second, ref);
+  EXPECT_EQ(cache.size(), kept) << "the second search analysed a part anew";
+  EXPECT_EQ(cache.hits() - hits_before, ref.screen_fem_calls + ref.fem_calls);
+}
+
+TEST(AnalysisCache, KeyChangesWithEveryInputOfTheAnalysis) {
+  const CornerLibrary& lib = CornerLibrary::get();
+  const ComposeResult r = lib.compose(ComposeOptions{});
+  ASSERT_TRUE(r.found) << r.reason;
+  const Candidate& c = r.best;
+  ASSERT_GE(c.part.size(), 2);
+  const double h = 4e-3;
+  const std::string key = AnalysisCache::key(lib.problem, 0, c, h);
+  Candidate tagged = c;
+  tagged.part.tabs[1].tag += 7;  // a caller's tag is not an input
+  EXPECT_EQ(AnalysisCache::key(lib.problem, 0, tagged, h), key);
+
+  EXPECT_NE(AnalysisCache::key(lib.problem, 1, c, h), key);
+  EXPECT_NE(AnalysisCache::key(lib.problem, 0, c, std::nextafter(h, 1.0)), key);
+  Problem thicker = lib.problem;
+  thicker.material.thickness = std::nextafter(thicker.material.thickness, 1.0);
+  EXPECT_NE(AnalysisCache::key(thicker, 0, c, h), key);
+  Problem other_rivets = lib.problem;
+  other_rivets.manufacturing.rivet_pitch *= 1.5;
+  EXPECT_NE(AnalysisCache::key(other_rivets, 0, c, h), key);
+  Problem other_radius = lib.problem;
+  other_radius.manufacturing.bend_radius *= 1.5;
+  EXPECT_NE(AnalysisCache::key(other_radius, 0, c, h), key);
+  Candidate longer = c;
+  longer.part.tabs.back().params.l = std::nextafter(longer.part.tabs.back().params.l, 1.0);
+  EXPECT_NE(AnalysisCache::key(lib.problem, 0, longer, h), key);
+  Candidate moved = c;
+  moved.part.base.origin.z() += 1e-9;
+  EXPECT_NE(AnalysisCache::key(lib.problem, 0, moved, h), key);
+  Candidate tied = c;
+  tied.self_rivets.push_back({0, 1, Vec3::Zero(), Vec3::Zero()});
+  EXPECT_NE(AnalysisCache::key(lib.problem, 0, tied, h), key);
 }
 
 }  // namespace
