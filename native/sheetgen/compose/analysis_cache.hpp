@@ -24,19 +24,21 @@ struct Candidate;
 class AnalysisCache {
  public:
   // What analyse_candidate() sets: the result, or the FEM's sentence when the
-  // model could not be solved.
+  // model could not be solved (the result is then not kept: a failed analysis
+  // leaves the candidate's own earlier one in place).
   struct Analysis {
     bool analysed = false;
     StructuralResult fem;
     std::string fem_error;
   };
 
-  // The exact bytes of every input of the candidate's analysis that can differ
-  // within one generate() run: the load, the sheet's thickness and the
+  // The exact bytes of every input of the candidate's analysis: the load
+  // (its box, force, mass and cases), the material, the requirements, the
   // thickness-scaled FEM inputs (bend radius, rivet size and spacing), the
   // mesh size, the part (base, every tab's parent, edge, parameters, rivet
   // area and self-rivet partner; not the callers' tags) and the self-rivet
-  // ties. Two keys are equal only when those inputs are equal bit for bit.
+  // ties. Two keys are equal only when those inputs are equal bit for bit, so
+  // one cache may serve any problems; generate() keeps one per load.
   static std::string key(const Problem& problem, int load_index, const Candidate& candidate, double element_size);
 
   std::optional<Analysis> find(const std::string& key) const;

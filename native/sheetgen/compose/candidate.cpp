@@ -108,14 +108,15 @@ void analyse_candidate(const Problem& problem, int load_index, Candidate& c, dou
   if (cache) {
     key = AnalysisCache::key(problem, load_index, c, element_size);
     if (std::optional<AnalysisCache::Analysis> known = cache->find(key)) {
+      // As a fresh analysis would: a failed one leaves c.fem as it was.
       c.analysed = known->analysed;
-      c.fem = std::move(known->fem);
+      if (known->analysed) c.fem = std::move(known->fem);
       c.fem_error = std::move(known->fem_error);
       return;
     }
   }
   analyse_fresh(problem, load_index, c, element_size, solver);
-  if (cache) cache->insert(key, {c.analysed, c.fem, c.fem_error});
+  if (cache) cache->insert(key, {c.analysed, c.analysed ? c.fem : StructuralResult{}, c.fem_error});
 }
 
 

@@ -10,7 +10,8 @@
 //   and every valid part it reports carries its search-mesh analysis.
 // * The analyses cache gives the search it would make without it, bit for bit,
 //   and a second search of the same library analyses nothing anew; its key
-//   changes with every input of an analysis.
+//   changes with every input of an analysis (part, mesh, sheet, material,
+//   requirements, load).
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -223,6 +224,16 @@ TEST(AnalysisCache, KeyChangesWithEveryInputOfTheAnalysis) {
   Problem thicker = lib.problem;
   thicker.material.thickness = std::nextafter(thicker.material.thickness, 1.0);
   EXPECT_NE(AnalysisCache::key(thicker, 0, c, h), key);
+  Problem stiffer = lib.problem;
+  stiffer.material.youngs_modulus = std::nextafter(stiffer.material.youngs_modulus, 1e12);
+  EXPECT_NE(AnalysisCache::key(stiffer, 0, c, h), key);
+  Problem floor = lib.problem;
+  floor.requirements.min_frequency_hz = 30.0;
+  EXPECT_NE(AnalysisCache::key(floor, 0, c, h), key);
+  Problem heavier = lib.problem;
+  ASSERT_FALSE(heavier.loads[0].cases.empty());
+  heavier.loads[0].cases.back().force.z() = std::nextafter(heavier.loads[0].cases.back().force.z(), 1e9);
+  EXPECT_NE(AnalysisCache::key(heavier, 0, c, h), key);
   Problem other_rivets = lib.problem;
   other_rivets.manufacturing.rivet_pitch *= 1.5;
   EXPECT_NE(AnalysisCache::key(other_rivets, 0, c, h), key);
