@@ -119,7 +119,6 @@ void analyse_candidate(const Problem& problem, int load_index, Candidate& c, dou
   if (cache) cache->insert(key, {c.analysed, c.analysed ? c.fem : StructuralResult{}, c.fem_error});
 }
 
-
 Candidate evaluate_candidate(const Problem& problem, const Environment& env, int load_index, const Part& base,
                              const SegmentLibrary& library, std::vector<int> segments, double element_size,
                              ShellSolver* solver, double cost_bound, AnalysisCache* cache) {

@@ -336,7 +336,7 @@ GenerateResult generate(const Problem& input, const GenerateOptions& options, Ge
     // same with and without sizing, and the sized part, which only loses
     // sheet, stays clear of everything they build (docs/pipeline.md "Sizing").
     if (out.ok && options.sizing) {
-      size_load_answer(*sheet_env, li, load_options, search);
+      size_load_answer(*sheet_env, li, options, search);
       if (out.sizing_cuts > 0) plan_answer(search.answer_scene ? *search.answer_scene : sheet_env->problem(), li, out);
     }
     out.total_time = load_clock.elapsed();
