@@ -356,6 +356,7 @@ struct SolveArgs {
   bool no_flat_fallback = false;
   bool no_sizing = false;
   bool no_right_angle_pass = false;
+  bool no_right_angle_search = false;
   int seed_retries = sheetgen::GenerateOptions{}.seed_retries;
 };
 
@@ -378,6 +379,7 @@ int solve(const SolveArgs& a) {
   options.seed_retries = a.seed_retries;
   options.sizing = !a.no_sizing;
   options.right_angle_pass = !a.no_right_angle_pass;
+  options.right_angle_search = !a.no_right_angle_search;
   sheetgen::GenerateProgress progress;
   std::signal(SIGINT, on_sigint);
   std::signal(SIGTERM, on_sigint);
@@ -491,6 +493,8 @@ CLI::App* add_solve_command(CLI::App& app, SolveArgs& a) {
                       "do not search a load a third time with flat extensions when no search found a valid part");
   solve_cmd->add_flag("--no-right-angle-pass", a.no_right_angle_pass,
                       "do not search each load once more in the right-angle grammar for a cheaper part");
+  solve_cmd->add_flag("--no-right-angle-search", a.no_right_angle_search,
+                      "do not search a load whose answer is a press-brake fallback again as a right-angle solve would");
   solve_cmd->add_flag("--no-sizing", a.no_sizing,
                       "keep each answer as the composition found it, without narrowing its tabs to its limits");
   solve_cmd->add_option("--seed-retries", a.seed_retries,

@@ -6,6 +6,7 @@
 #include <thread>
 
 #include "sheetgen/core/cancelled.hpp"
+#include "sheetgen/core/cost_model.hpp"
 #include "sheetgen/core/geometry.hpp"
 #include "sheetgen/core/sheet_gauges.hpp"
 #include "sheetgen/env/environment.hpp"
@@ -104,6 +105,7 @@ GenerateResult result_settings(const Problem& problem, const GenerateOptions& op
   result.web_fallback = options.web_fallback;
   result.flat_fallback = options.flat_fallback && !problem.manufacturing.flat_extensions;
   result.right_angle_pass = options.right_angle_pass && problem.manufacturing.admits_right_angle_pass();
+  result.right_angle_search = options.right_angle_search && problem.manufacturing.admits_right_angle_pass();
   result.seed_retries = options.seed_retries;
   result.sizing = options.sizing;
   return result;
@@ -156,13 +158,6 @@ void plan_answer(const Problem& answer_scene, int li, LoadOutcome& out) {
   if (out.ok) place_rivets(answer_scene, li, out);
 }
 
-// How a load is searched on each sheet: with a flat-extension pass
-// (GenerateResult::flat_fallback), and with or without the press-brake check.
-struct SearchRound {
-  bool flat_fallback = true;
-  bool press_fallback = false;  // without the check ("prefer", docs/manufacturing.md "Press brake")
-};
-
 // The search of one load at the sheet of `env`'s problem: the blocked-base
 // test, every pass, and the answer's manufacturing plan; `blocked` says the
 // base tab itself is not clear. False when cancelled.
@@ -173,7 +168,7 @@ bool search_sheet(const Environment& env, int li, const GenerateOptions& options
   out.reason = blocked_load_reason(env, li, out.load);
   blocked = !out.reason.empty();
   if (blocked) return true;
-  LoadSearch found = search_load(env, li, out, options, round.flat_fallback, round.press_fallback, progress);
+  LoadSearch found = search_load(env, li, out, options, round, progress);
   if (!found.finished || cancel_requested(progress)) return false;
   search = std::move(found);
   search.answer.thickness = env.problem().material.thickness;
@@ -268,12 +263,14 @@ bool search_round(const Problem& problem, LoadEnvironments& environments, int li
 // (docs/manufacturing.md "Press brake") and no part the tools bend on any
 // sheet, every sheet again without it: a shop takes the next gauge up before
 // it takes a part its standard tools cannot bend. The fallback's answer needs
-// other tools, and its plan names the bend and why. False when cancelled.
-bool search_load_sheets(const Problem& problem, LoadEnvironments& environments, int li,
-                        const GenerateOptions& options, bool flat_fallback, GenerateProgress* progress,
-                        LoadSearch& search, std::unique_ptr<Environment>& gauge_env) {
+// other tools, and its plan names the bend and why. `right_angles`: every
+// pass in the right-angle grammar. False when cancelled.
+bool search_rounds(const Problem& problem, LoadEnvironments& environments, int li, const GenerateOptions& options,
+                   bool flat_fallback, bool right_angles, GenerateProgress* progress, LoadSearch& search,
+                   std::unique_ptr<Environment>& gauge_env) {
   bool blocked = false;
-  if (!search_round(problem, environments, li, options, {flat_fallback, false}, progress, search, gauge_env, blocked))
+  if (!search_round(problem, environments, li, options, {flat_fallback, false, right_angles}, progress, search,
+                    gauge_env, blocked))
     return false;
   const Manufacturing& mf = problem.manufacturing;
   if (blocked || search.answer.ok || !mf.press_brake_required || !mf.press_brake_fallback || cancel_requested(progress))
@@ -281,11 +278,74 @@ bool search_load_sheets(const Problem& problem, LoadEnvironments& environments, 
   LoadSearch fallback;
   fallback.answer.load = search.answer.load;
   std::unique_ptr<Environment> fallback_env;
-  if (!search_round(problem, environments, li, options, {flat_fallback, true}, progress, fallback, fallback_env,
-                    blocked))
+  if (!search_round(problem, environments, li, options, {flat_fallback, true, right_angles}, progress, fallback,
+                    fallback_env, blocked))
     return false;
   if (keep_press_fallback(search, std::move(fallback), problem)) gauge_env = std::move(fallback_env);
   return true;
+}
+
+// What a valid answer costs, comparable across sheets: its search score
+// (square metres of its own sheet) times the price of a square metre of that
+// sheet when the problem ranks by cost; the score itself (area and bends,
+// whatever the sheet) when it ranks by area (docs/cost.md).
+double answer_price(const Problem& problem, const LoadOutcome& answer) {
+  if (!problem.cost.rank_by_cost) return answer.part.cost;
+  Material sheet = problem.material;
+  sheet.thickness = answer.thickness;
+  return answer.part.cost * sheet_price_per_m2(problem.cost, sheet);
+}
+
+// The right-angle search (docs/pipeline.md step 4h): a load whose answer is a
+// press-brake fallback is searched once more as a right-angle solve would
+// search it, every pass, sheet and round in that grammar. Its answer replaces
+// the fallback when the tools bend it, or when it is a fallback too and
+// cheaper. The right-angle pass of each sheet (step 4e) is one plain pass; on
+// the fallback scenes the right-angle solve's parts came from its retries, its
+// web pass or a thicker gauge (docs/ablation_composition.md), so only the whole
+// search dominates it. False when cancelled.
+bool right_angle_search(const Problem& problem, LoadEnvironments& environments, int li, const GenerateOptions& options,
+                        GenerateProgress* progress, LoadSearch& search, std::unique_ptr<Environment>& gauge_env) {
+  LoadOutcome& best = search.answer;
+  if (!best.ok || !best.press_fallback || !options.right_angle_search ||
+      !problem.manufacturing.admits_right_angle_pass() || cancel_requested(progress))
+    return true;
+  // One environment alive at a time: the answer's gauge is built again below
+  // if the answer stays.
+  gauge_env.reset();
+  LoadSearch square;
+  square.answer.load = best.load;
+  std::unique_ptr<Environment> square_env;
+  if (progress) progress->right_angle_pass = true;
+  const bool finished = search_rounds(problem, environments, li, options, false, true, progress, square, square_env);
+  if (progress) progress->right_angle_pass = false;
+  if (!finished) return false;
+  LoadOutcome& found = square.answer;
+  const bool keep =
+      found.ok && (!found.press_fallback || answer_price(problem, found) < answer_price(problem, best));
+  best.right_angle_search_tried = found.right_angle_search_tried = true;
+  found.right_angle_search = keep;
+  LoadSearch& kept = keep ? square : search;
+  add_search_work(kept.answer, (keep ? search : square).answer);
+  if (keep) {
+    search = std::move(square);
+    gauge_env = std::move(square_env);
+    return true;
+  }
+  if (best.thickness == problem.material.thickness) return true;
+  const Stopwatch clock;
+  gauge_env = environments.at_sheet(at_gauge(problem, best.thickness));
+  best.environment_time += clock.elapsed();
+  return gauge_env != nullptr;
+}
+
+// Every round of a load (search_rounds), then the right-angle search when the
+// answer is a press-brake fallback. False when cancelled.
+bool search_load_sheets(const Problem& problem, LoadEnvironments& environments, int li,
+                        const GenerateOptions& options, bool flat_fallback, GenerateProgress* progress,
+                        LoadSearch& search, std::unique_ptr<Environment>& gauge_env) {
+  return search_rounds(problem, environments, li, options, flat_fallback, false, progress, search, gauge_env) &&
+         right_angle_search(problem, environments, li, options, progress, search, gauge_env);
 }
 
 }  // namespace

@@ -42,6 +42,12 @@ struct GenerateOptions {
   // pass"); off: --no-right-angle-pass. Not run where the problem's limits are
   // right angles already or exclude 90 deg.
   bool right_angle_pass = true;
+  // A load whose answer is a press-brake fallback is searched again as a
+  // right-angle solve searches it, and its part replaces the fallback when the
+  // tools bend it or it is cheaper (docs/pipeline.md step 4h); off:
+  // --no-right-angle-search. Not run where the problem's limits are right
+  // angles already or exclude 90 deg.
+  bool right_angle_search = true;
   // The answer of each load is narrowed tab by tab while it stays valid
   // (docs/pipeline.md "Sizing"); off: --no-sizing.
   bool sizing = true;
@@ -91,6 +97,10 @@ struct LoadOutcome {
   int seed_retry = 0;                // 1-based: the answer comes from that retry; 0: from an earlier pass
   bool right_angle_pass_tried = false;  // the load was searched once more in the right-angle grammar
   bool right_angle_pass = false;     // the answer comes from that search (cheaper, or the only valid one)
+  // The answer was a press-brake fallback, so the load was searched again as a right-angle solve
+  // searches it (every pass, sheet and round; docs/pipeline.md step 4h), and the answer comes from it.
+  bool right_angle_search_tried = false;
+  bool right_angle_search = false;
   // "prefer" (Manufacturing::press_brake_fallback): no search with the press-brake check found a valid
   // part, so the load was searched again without it, and the answer comes from that search.
   bool press_fallback = false;
@@ -125,6 +135,7 @@ struct GenerateResult {
   bool flat_fallback = true;          // a third search with flat extensions where neither found one
   int seed_retries = 2;               // at most this many searches with fresh seeds where no pass found a part
   bool right_angle_pass = true;       // every load searched once more in the right-angle grammar
+  bool right_angle_search = true;     // press-brake fallbacks searched again as a right-angle solve would
   bool sizing = true;                 // answers narrowed to their limits
   bool cancelled = false;
   double seconds = 0;

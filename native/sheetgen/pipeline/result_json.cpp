@@ -111,6 +111,8 @@ void add_search_fields(json& p, const LoadOutcome& o) {
   p["seed_retry"] = o.seed_retry;
   p["right_angle_pass_tried"] = o.right_angle_pass_tried;
   p["right_angle_pass"] = o.right_angle_pass;
+  p["right_angle_search_tried"] = o.right_angle_search_tried;
+  p["right_angle_search"] = o.right_angle_search;
   p["press_fallback"] = o.press_fallback;
   p["press_rejected"] = o.press_rejected;
   p["press_rejected_segments"] = o.press_rejected_segments;
@@ -170,6 +172,7 @@ json result_json(const Problem& problem, const GenerateResult& result, const std
                    {"flat_fallback", result.flat_fallback},
                    {"seed_retries", result.seed_retries},
                    {"right_angle_pass", result.right_angle_pass},
+                   {"right_angle_search", result.right_angle_search},
                    {"sizing", result.sizing}};
   doc["timing"] = {{"total_s", result.seconds}};
   return doc;

@@ -395,13 +395,19 @@ void right_angle_pass(const Problem& scene, const Environment& env, int li, cons
 }  // namespace
 
 LoadSearch search_load(const Environment& env, int li, const LoadOutcome& start, const GenerateOptions& options,
-                       bool flat_fallback, bool press_fallback, GenerateProgress* progress) {
+                       SearchRound round, GenerateProgress* progress) {
   Problem scene = env.problem();
-  if (press_fallback) scene.manufacturing.press_brake_required = false;
+  if (round.press_fallback) scene.manufacturing.press_brake_required = false;
+  if (round.right_angles) scene.manufacturing.restrict_to_right_angles();  // flat extensions included
   LoadOutcome first = start;
-  first.press_fallback = press_fallback;
-  LoadSearch s = search_passes(scene, env, li, first, options, flat_fallback, progress);
-  right_angle_pass(scene, env, li, first, options, progress, s);
+  first.press_fallback = round.press_fallback;
+  LoadSearch s = search_passes(scene, env, li, first, options, round.flat_fallback && !round.right_angles, progress);
+  if (!round.right_angles) {
+    right_angle_pass(scene, env, li, first, options, progress, s);
+    return s;
+  }
+  // The answer's plan, sizing and model use the grammar it was found in.
+  if (!s.answer_scene) s.answer_scene = std::move(scene);
   return s;
 }
 

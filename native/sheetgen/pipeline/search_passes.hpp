@@ -30,12 +30,19 @@ struct LoadSearch {
   SegmentLibrary library;
 };
 
+// How a load is searched on one sheet (docs/pipeline.md "Pipeline per load").
+struct SearchRound {
+  bool flat_fallback = true;    // a pass with flat extensions where the others give no part (GenerateResult::flat_fallback)
+  bool press_fallback = false;  // every pass without the press-brake check, the answer marked LoadOutcome::press_fallback
+  // Every pass in the right-angle grammar (the right-angle search, step 4h):
+  // no flat-extension pass (the grammar has them) and no right-angle pass.
+  bool right_angles = false;
+};
+
 // `start` holds the load's fields known before the search (name, environment
-// time); `flat_fallback` is GenerateResult::flat_fallback (the options' wish,
-// off where flat extensions are already on); `press_fallback`: every pass
-// without the press-brake check, the answer marked LoadOutcome::press_fallback.
+// time).
 LoadSearch search_load(const Environment& env, int load_index, const LoadOutcome& start, const GenerateOptions& options,
-                       bool flat_fallback, bool press_fallback, GenerateProgress* progress);
+                       SearchRound round, GenerateProgress* progress);
 
 // The press-brake fallback's search (every sheet again without the check)
 // against the checked one's answer: the work of both counts; the fallback's

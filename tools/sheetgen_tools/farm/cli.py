@@ -46,7 +46,7 @@ def parser(default_sheetgen):
     for flag, metavar in (("--seed", "S"), ("--chains", "M"), ("--iterations", "N"), ("--beam", "B")):
         search.add_argument(flag, type=int, metavar=metavar)
     for flag in ("--right-angles", "--flat-extensions", "--no-self-rivet", "--no-lips", "--no-web-roots", "--no-flat-fallback",
-                 "--no-right-angle-pass", "--no-sizing"):
+                 "--no-right-angle-pass", "--no-right-angle-search", "--no-sizing"):
         search.add_argument(flag, action="store_true")
     return ap
 
@@ -61,7 +61,7 @@ def options_of(args):
         raise ValueError(f"--retries must be 0 or more, not {args.retries}")
     flags = tuple(f"--{name.replace('_', '-')}" for name in ("right_angles", "flat_extensions", "no_self_rivet",
                                                             "no_lips", "no_web_roots", "no_flat_fallback",
-                                                            "no_right_angle_pass", "no_sizing")
+                                                            "no_right_angle_pass", "no_right_angle_search", "no_sizing")
                   if getattr(args, name))
     solve = runner.SolveOptions(threads=args.threads_per_task, chains=args.chains, iterations=args.iterations,
                                 seed=args.seed, beam=args.beam, flags=flags, sheetgen=os.path.abspath(args.sheetgen))
